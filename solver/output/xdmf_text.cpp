@@ -1,0 +1,123 @@
+#include "output/xdmf_text.hpp"
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+namespace needlefem::output {
+namespace {
+
+std::string dimensions(const XdmfDataset& data, std::size_t leading) {
+  std::string text = leading > 0 ? fmt::format("{} {}", leading, data.entities)
+                                 : fmt::format("{}", data.entities);
+  if (data.components > 1) text += fmt::format(" {}", data.components);
+  return text;
+}
+
+std::string number_type(const XdmfDataset& data) {
+  return data.integer ? R"(NumberType="Int" Precision="4")" : R"(NumberType="Float" Precision="8")";
+}
+
+// A whole dataset, or for a time series the slab [time_index, :, :] of it.
+std::string data_item(const XdmfDocument& document, const XdmfDataset& data,
+                      std::size_t time_index, const std::string& indent) {
+  std::string heavy = fmt::format(R"({}:{})", document.h5_file_name, data.path);
+  if (!data.per_time) {
+    return fmt::format("{}<DataItem Dimensions=\"{}\" {} Format=\"HDF\">{}</DataItem>\n", indent,
+                       dimensions(data, 0), number_type(data), heavy);
+  }
+  const int rank = data.components > 1 ? 3 : 2;
+  std::string start = fmt::format("{} 0", time_index), stride = "1 1",
+              count = fmt::format("1 {}", data.entities);
+  if (rank == 3) {
+    start += " 0";
+    stride += " 1";
+    count += fmt::format(" {}", data.components);
+  }
+  return fmt::format(
+      "{0}<DataItem ItemType=\"HyperSlab\" Dimensions=\"{1}\" Type=\"HyperSlab\">\n"
+      "{0}  <DataItem Dimensions=\"3 {2}\" Format=\"XML\">{3} {4} {5}</DataItem>\n"
+      "{0}  <DataItem Dimensions=\"{6}\" {7} Format=\"HDF\">{8}</DataItem>\n"
+      "{0}</DataItem>\n",
+      indent, count, rank, start, stride, count, dimensions(data, document.capacity),
+      number_type(data), heavy);
+}
+
+std::string attribute_type(int components) {
+  switch (components) {
+    case 1: return "Scalar";
+    case 3: return "Vector";
+    case 9: return "Tensor";
+    default: throw std::logic_error(fmt::format("XDMF: no attribute type with {} components", components));
+  }
+}
+
+// Without a time, per-time attributes are left out: the file then shows the mesh and the
+// static fields (the state of a run killed before its first output time).
+std::string grid(const XdmfDocument& document, const XdmfTopology& topology,
+                 const double* time, std::size_t time_index, const std::string& indent) {
+  std::string text = fmt::format("{}<Grid Name=\"{}\" GridType=\"Uniform\">\n", indent, topology.name);
+  const std::string inner = indent + "  ";
+  if (time) text += fmt::format("{}<Time Value=\"{:.17g}\"/>\n", inner, *time);
+  for (const auto& [name, value] : topology.information)
+    text += fmt::format("{}<Information Name=\"{}\" Value=\"{}\"/>\n", inner, name, value);
+  text += fmt::format("{}<Topology TopologyType=\"{}\" NumberOfElements=\"{}\">\n", inner,
+                      topology.topology_type, topology.connectivity.entities);
+  text += data_item(document, topology.connectivity, 0, inner + "  ");
+  text += fmt::format("{}</Topology>\n{}<Geometry GeometryType=\"XYZ\">\n", inner, inner);
+  text += data_item(document, document.coordinates, 0, inner + "  ");
+  text += fmt::format("{}</Geometry>\n", inner);
+  for (const XdmfAttribute& attribute : topology.attributes) {
+    if (attribute.data.per_time && !time) continue;
+    text += fmt::format("{}<Attribute Name=\"{}\" AttributeType=\"{}\" Center=\"{}\">\n", inner,
+                        attribute.name, attribute_type(attribute.data.components),
+                        attribute.at_nodes ? "Node" : "Cell");
+    text += data_item(document, attribute.data, time_index, inner + "  ");
+    text += fmt::format("{}</Attribute>\n", inner);
+  }
+  return text + indent + "</Grid>\n";
+}
+
+// One time (or the static state): a single grid, or a spatial collection of all grids.
+std::string state(const XdmfDocument& document, const double* time, std::size_t time_index,
+                  const std::string& indent) {
+  if (document.grids.size() == 1) return grid(document, document.grids.front(), time, time_index, indent);
+  std::string text = fmt::format("{}<Grid Name=\"surfaces\" GridType=\"Collection\" "
+                                 "CollectionType=\"Spatial\">\n", indent);
+  if (time) text += fmt::format("{}  <Time Value=\"{:.17g}\"/>\n", indent, *time);
+  for (const XdmfTopology& topology : document.grids)
+    text += grid(document, topology, time, time_index, indent + "  ");
+  return text + indent + "</Grid>\n";
+}
+
+}  // namespace
+
+std::string xdmf_text(const XdmfDocument& document, const std::vector<double>& times) {
+  std::string text =
+      "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n  <Domain>\n";
+  if (times.empty()) {
+    text += state(document, nullptr, 0, "    ");
+  } else {
+    text += "    <Grid Name=\"time_series\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+    for (std::size_t i = 0; i < times.size(); ++i) text += state(document, &times[i], i, "      ");
+    text += "    </Grid>\n";
+  }
+  return text + "  </Domain>\n</Xdmf>\n";
+}
+
+void replace_file_atomically(const std::filesystem::path& path, const std::string& text) {
+  const std::filesystem::path temporary = path.string() + ".tmp";
+  std::FILE* file = std::fopen(temporary.c_str(), "wb");
+  if (!file) throw std::runtime_error(fmt::format("{}: cannot create: {}", temporary.string(), std::strerror(errno)));
+  const bool written = std::fwrite(text.data(), 1, text.size(), file) == text.size();
+  if (std::fclose(file) != 0 || !written)
+    throw std::runtime_error(fmt::format("{}: write failed", temporary.string()));
+  if (std::rename(temporary.c_str(), path.c_str()) != 0)
+    throw std::runtime_error(fmt::format("{}: cannot rename to {}: {}", temporary.string(),
+                                         path.string(), std::strerror(errno)));
+}
+
+}  // namespace needlefem::output

@@ -1,0 +1,53 @@
+// XDMF 3 text for the datasets of a ResultFile (see result_file.hpp for the HDF5 layout).
+// The XDMF holds no data, only references "file.h5:/dataset" (relative to the XDMF's
+// folder) and, for time-series fields, HyperSlab selections of one time out of the
+// [capacity, entities, components] datasets.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace needlefem::output {
+
+struct XdmfDataset {
+  std::string path;                // HDF5 dataset path, e.g. "/static/node/temperature"
+  std::size_t entities = 0;        // nodes or cells
+  int components = 1;              // 1 is written without a component dimension
+  bool integer = false;            // 32-bit int, else 64-bit float
+  bool per_time = false;           // a [capacity, entities(, components)] time series
+};
+
+struct XdmfAttribute {
+  std::string name;
+  bool at_nodes = true;            // Center="Node", else Center="Cell"
+  XdmfDataset data;
+};
+
+struct XdmfTopology {
+  std::string name;                // grid name
+  std::string topology_type;       // "Tetrahedron_10", "Tetrahedron", "Triangle_6", "Triangle"
+  XdmfDataset connectivity;        // [cells, nodes per cell], integer
+  std::vector<XdmfAttribute> attributes;
+  std::vector<std::pair<std::string, std::string>> information;  // <Information Name Value>
+};
+
+struct XdmfDocument {
+  std::string h5_file_name;        // referenced relative to the XDMF file
+  XdmfDataset coordinates;         // [nodes, 3] float
+  std::size_t capacity = 0;        // time-series length in the HDF5 file
+  // One grid per topology. With several grids each time step is a spatial collection.
+  std::vector<XdmfTopology> grids;
+};
+
+// The XDMF text. With `times` empty, one static grid (or spatial collection) without the
+// time-series attributes; otherwise a temporal collection with one entry per listed time
+// (times[i] is stored at index i of the time-series datasets).
+std::string xdmf_text(const XdmfDocument& document, const std::vector<double>& times);
+
+// Writes `text` to a temporary file next to `path`, then renames it over `path`, so a
+// reader (or a process killed meanwhile) never sees a half-written file.
+void replace_file_atomically(const std::filesystem::path& path, const std::string& text);
+
+}  // namespace needlefem::output
