@@ -1,0 +1,80 @@
+// The tissue material as one value: a choice of law (a std::variant of small value types) plus
+// the name it was built from, so every output can say which material it used.
+//
+// Laws:
+//  * PolynomialTissue: decoupled polynomial (N = 2) isochoric energy wrapped in a Prony series
+//    (polynomial.hpp, viscoelastic.hpp) plus U(J) = K/2 (J - 1)². Its hyperelastic constants
+//    are INSTANTANEOUS moduli; the long-term shear modulus is g∞ · 2 (C10 + C01).
+//  * CorotationalLinear: paper 000's co-rotational linear elastic tissue (corotational.hpp).
+//
+// Every law is a pure function of F, the internal state at the start of the step and the time
+// step; nothing is mutated. Consistent tangents are exact derivatives of the stepped stress,
+// computed with Dual numbers (tensor.hpp).
+#pragma once
+
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "physics/material/corotational.hpp"
+#include "physics/material/polynomial.hpp"
+#include "physics/material/tensor.hpp"
+#include "physics/material/viscoelastic.hpp"
+
+namespace needlefem {
+class Case;
+}
+
+namespace needlefem::material {
+
+struct PolynomialTissue {
+  Viscoelastic<PolynomialIsochoric> isochoric;
+  VolumetricQuadratic volumetric;
+};
+
+using MaterialLaw = std::variant<PolynomialTissue, CorotationalLinear>;
+
+struct MaterialPointResult {
+  Mat3d first_pk;   // P = F S
+  Mat3d second_pk;  // S
+  ViscousState state;  // internal variables at the end of the step
+};
+
+class Material {
+ public:
+  Material(std::string name, MaterialLaw law) : name_(std::move(name)), law_(std::move(law)) {}
+
+  const std::string& name() const { return name_; }
+  const MaterialLaw& law() const { return law_; }
+
+  ViscousState initial_state() const;
+  // Stress at deformation gradient F after a step of length dt (s) from internal state `old`.
+  // dt = 0 gives the instantaneous response, dt = +inf the fully relaxed one.
+  MaterialPointResult update(const Mat3d& F, const ViscousState& old, double dt) const;
+  // Consistent tangent A_iJkL = ∂P_iJ/∂F_kL of update()'s first Piola-Kirchhoff stress.
+  Tensor4 tangent(const Mat3d& F, const ViscousState& old, double dt) const;
+  // Instantaneous strain-energy density W(F) (Pa); update(F, ·, 0).first_pk = ∂W/∂F from rest.
+  double instantaneous_energy(const Mat3d& F) const;
+
+  // True for laws with an isochoric/volumetric split, whose material-point driver imposes
+  // J = 1 exactly (the volumetric part then carries only the constraint pressure).
+  bool incompressible() const { return std::holds_alternative<PolynomialTissue>(law_); }
+  double instantaneous_shear_modulus() const;
+  double long_term_shear_modulus() const;
+  // One line naming the material and all its constants, for logs and output headers.
+  std::string description() const;
+
+ private:
+  std::string name_;
+  MaterialLaw law_;
+};
+
+// Names accepted by material_preset(): "miller-brain", "miller-brain-c10-c20".
+const std::vector<std::string>& material_preset_names();
+// A preset with every other [material] key at its schema default.
+Material material_preset(const std::string& name);
+// The material of a case's [material] table (schema keys material.*). Throws CaseError naming
+// the key for inconsistent input (e.g. coefficients given with a named preset).
+Material material_from_case(const Case& input);
+
+}  // namespace needlefem::material

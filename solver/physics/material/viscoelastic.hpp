@@ -1,0 +1,109 @@
+// Prony-series viscoelasticity on the isochoric second Piola-Kirchhoff stress, as a decorator
+// around any isochoric elastic law (one with `stress(C)` giving S⁰_iso = 2 ∂W_iso/∂C).
+// Internal-variable form (Simo 1987, CMAME 60:153; Holzapfel 2000 §6.10):
+//
+//   S_iso = S⁰_iso(C) - Σ_i Q_i,     dQ_i/dt = (g_i S⁰_iso - Q_i) / τ_i,   Q_i(0) = 0.
+//
+// The g_i are fractions of the INSTANTANEOUS modulus: a sudden load gives S⁰_iso, a held one
+// relaxes to g∞ S⁰_iso with g∞ = 1 - Σ g_i (so the long-term shear modulus is g∞ mu0).
+//
+// Two ways to integrate, which tests check against each other:
+//  * The ODE right-hand side and its derivatives, for an integrator (IDA) that keeps Q_i in its
+//    state vector:  ∂(dQ_i/dt)/∂Q_i = -1/τ_i,  ∂(dQ_i/dt)/∂E = (g_i/τ_i) ∂S⁰_iso/∂E.
+//  * One step of length Δt (Simo's exponential recursion): exact when S⁰_iso varies linearly in
+//    time over the step. With x = Δt/τ_i, e_i = exp(-x), h_i = (1 - e_i)/x,
+//      Q_i⁺ = e_i Q_i + g_i [(1 - h_i) S⁰⁺ + (h_i - e_i) S⁰],
+//    derived from Q_i = g_i S⁰ - H_i, H_i(t) = g_i ∫ exp(-(t-s)/τ_i) dS⁰/ds ds, whose update
+//    for linear S⁰ is H_i⁺ = e_i H_i + g_i h_i (S⁰⁺ - S⁰). Δt → 0 gives the instantaneous
+//    (elastic) response, Δt = +inf the fully relaxed one; both are valid arguments.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+#include "physics/material/tensor.hpp"
+
+namespace needlefem::material {
+
+struct PronyTerm {
+  double g = 0.0;      // relative modulus (fraction of the instantaneous one)
+  double tau_s = 1.0;  // relaxation time, s
+};
+
+// Internal state of a viscoelastic material point: one Q_i per Prony term, and the elastic
+// isochoric stress S⁰_iso at the time of the state (the recursion needs its increment).
+struct ViscousState {
+  std::vector<Mat3d> q;
+  Mat3d elastic_stress;
+};
+
+template <class Elastic>
+struct Viscoelastic {
+  Elastic elastic;
+  std::vector<PronyTerm> terms;
+
+  double long_term_fraction() const {
+    double g_infinity = 1.0;
+    for (const auto& term : terms) g_infinity -= term.g;
+    return g_infinity;
+  }
+
+  ViscousState initial_state() const { return {std::vector<Mat3d>(terms.size()), Mat3d{}}; }
+
+  // --- ODE form ------------------------------------------------------------------------------
+  // S_iso = S⁰_iso - Σ Q_i for given internal variables.
+  template <class T>
+  Mat3<T> stress(const Mat3<T>& C, const std::vector<Mat3d>& q) const {
+    Mat3<T> s = elastic.stress(C);
+    for (const auto& q_i : q) s -= lift<T>(q_i);
+    return s;
+  }
+  // dQ_i/dt for all terms.
+  std::vector<Mat3d> viscous_rate(const Mat3d& C, const std::vector<Mat3d>& q) const {
+    const Mat3d s0 = elastic.stress(C);
+    std::vector<Mat3d> rate(terms.size());
+    for (std::size_t i = 0; i < terms.size(); ++i)
+      rate[i] = (1.0 / terms[i].tau_s) * (terms[i].g * s0 - q[i]);
+    return rate;
+  }
+  // ∂(dQ_i/dt)/∂Q_i = -1/τ_i times the identity (no coupling between terms).
+  double viscous_rate_dq(std::size_t i) const { return -1.0 / terms[i].tau_s; }
+  // ∂(dQ_i/dt)/∂E = (g_i/τ_i) ∂S⁰_iso/∂E.
+  Tensor4 viscous_rate_de(const Mat3d& C, std::size_t i) const {
+    Tensor4 d = elastic_tangent(C);
+    for (auto& v : d.a) v *= terms[i].g / terms[i].tau_s;
+    return d;
+  }
+  // ∂S⁰_iso/∂E (E = (C - I)/2, so dC = 2 dE).
+  Tensor4 elastic_tangent(const Mat3d& C) const {
+    return green_strain_jacobian(C, [&](const Mat3<Dual>& c) { return elastic.stress(c); });
+  }
+
+  // --- one-step form ---------------------------------------------------------------------------
+  // S_iso after a step of length dt from `old` to right Cauchy-Green C (templated so the
+  // consistent tangent is its exact derivative).
+  template <class T>
+  Mat3<T> stepped_stress(const Mat3<T>& C, const ViscousState& old, double dt) const {
+    const Mat3<T> s0 = elastic.stress(C);
+    Mat3<T> s = s0;
+    for (std::size_t i = 0; i < terms.size(); ++i) s -= stepped_q(i, s0, old, dt);
+    return s;
+  }
+  ViscousState advance(const Mat3d& C, const ViscousState& old, double dt) const {
+    ViscousState next{std::vector<Mat3d>(terms.size()), elastic.stress(C)};
+    for (std::size_t i = 0; i < terms.size(); ++i) next.q[i] = stepped_q(i, next.elastic_stress, old, dt);
+    return next;
+  }
+
+ private:
+  template <class T>
+  Mat3<T> stepped_q(std::size_t i, const Mat3<T>& s0_new, const ViscousState& old, double dt) const {
+    const double x = dt / terms[i].tau_s;
+    const double e = std::exp(-x);
+    const double h = x > 0.0 ? -std::expm1(-x) / x : 1.0;  // (1 - e)/x -> 1 as x -> 0, 0 as x -> inf
+    return lift<T>(e * old.q[i] + terms[i].g * (h - e) * old.elastic_stress) + (terms[i].g * (1.0 - h)) * s0_new;
+  }
+};
+
+}  // namespace needlefem::material
