@@ -95,6 +95,34 @@ TEST(MaterialLaws, TangentMatchesFiniteDifferences) {
     }
 }
 
+// ∂S/∂E of the stepped stress, by differences of S along dF = F^-T dE (for which dC = 2 dE).
+TEST(MaterialLaws, GreenStrainTangentMatchesFiniteDifferences) {
+  const Mat3d F = general_deformation();
+  const Mat3d F_inverse_transpose = transpose(inverse(F));
+  for (const auto& material : all_laws()) {
+    const ViscousState old = loaded_state(material);
+    const Tensor4 A = material.tangent_green_strain(F, old, 0.2);
+    double error = 0.0, size = 0.0;
+    const double h = 1e-6;
+    for (int k = 0; k < 3; ++k)
+      for (int l = 0; l < 3; ++l) {
+        Mat3d dE;
+        dE(k, l) += 0.5;
+        dE(l, k) += 0.5;
+        const Mat3d dF = h * (F_inverse_transpose * dE);
+        const Mat3d dS = (1.0 / (2 * h)) * (material.update(F + dF, old, 0.2).second_pk -
+                                            material.update(F - dF, old, 0.2).second_pk);
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) {
+            error = std::max(error, std::abs(dS(i, j) - A(i, j, k, l)));
+            size = std::max(size, std::abs(A(i, j, k, l)));
+          }
+      }
+    RecordProperty(material.name() + "_dS_dE_rel_error", scientific(error / size));
+    EXPECT_LT(error / size, 1e-6) << material.name();
+  }
+}
+
 TEST(MaterialLaws, Objectivity) {
   const Mat3d F = general_deformation();
   const Mat3d Q = rotation(0.7, 0) * rotation(-1.3, 2);
@@ -159,6 +187,19 @@ TEST(MaterialLaws, MixedElementInterface) {
     }
   EXPECT_LT(vol_error, 1e-6 * max_abs(s_vol));
   EXPECT_LT(tangent_error, 1e-6 * tangent_size);
+
+  // The viscoelastic isochoric block: the stepped tangent is [1 - Σ g_i (1 - h_i)] ∂S⁰_iso/∂E.
+  const ViscousState old = tissue.isochoric.advance(C, tissue.isochoric.initial_state(), 0.1);
+  const double dt = 0.3;
+  double scale = 1.0;
+  for (const auto& term : tissue.isochoric.terms) {
+    const double x = dt / term.tau_s;
+    scale -= term.g * (1.0 - (1.0 - std::exp(-x)) / x);
+  }
+  const Tensor4 stepped = tissue.isochoric.stepped_tangent(C, old, dt);
+  double stepped_error = 0.0;
+  for (int n = 0; n < 81; ++n) stepped_error = std::max(stepped_error, std::abs(stepped.a[n] - scale * tangent.a[n]));
+  EXPECT_LT(stepped_error, 1e-12 * tangent_size);
 }
 
 // Right Cauchy-Green tensor of a smooth loading path (tension, shear, partial unloading).

@@ -64,23 +64,32 @@ ViscousState Material::initial_state() const {
   return {};
 }
 
-MaterialPointResult Material::update(const Mat3d& F, const ViscousState& old, double dt) const {
+template <class T>
+Mat3<T> Material::stepped_second_pk(const Mat3<T>& F, const ViscousState& old, double dt) const {
   if (const auto* tissue = std::get_if<PolynomialTissue>(&law_)) {
-    const Mat3d C = right_cauchy_green(F);
-    const Mat3d S = tissue->isochoric.stepped_stress(C, old, dt) + tissue->volumetric.stress(C);
-    return {F * S, S, tissue->isochoric.advance(C, old, dt)};
+    const Mat3<T> C = right_cauchy_green(F);
+    return tissue->isochoric.stepped_stress(C, old, dt) + tissue->volumetric.stress(C);
   }
-  const Mat3d P = std::get<CorotationalLinear>(law_).first_piola_kirchhoff(F);
-  return {P, inverse(F) * P, old};
+  return inverse(F) * std::get<CorotationalLinear>(law_).first_piola_kirchhoff(F);
+}
+
+MaterialPointResult Material::update(const Mat3d& F, const ViscousState& old, double dt) const {
+  const Mat3d S = stepped_second_pk(F, old, dt);
+  const auto* tissue = std::get_if<PolynomialTissue>(&law_);
+  return {F * S, S, tissue ? tissue->isochoric.advance(right_cauchy_green(F), old, dt) : old};
 }
 
 Tensor4 Material::tangent(const Mat3d& F, const ViscousState& old, double dt) const {
-  return directional_jacobian(F, false, [&](const Mat3<Dual>& f) {
-    if (const auto* tissue = std::get_if<PolynomialTissue>(&law_)) {
-      const Mat3<Dual> C = right_cauchy_green(f);
-      return f * (tissue->isochoric.stepped_stress(C, old, dt) + tissue->volumetric.stress(C));
-    }
-    return std::get<CorotationalLinear>(law_).first_piola_kirchhoff(f);
+  return directional_jacobian(F, false, [&](const Mat3<Dual>& f) { return f * stepped_second_pk(f, old, dt); });
+}
+
+Tensor4 Material::tangent_green_strain(const Mat3d& F, const ViscousState& old, double dt) const {
+  // A symmetric strain direction dE is produced by dF = F^-T dE (then dC = 2 dE), so the
+  // derivative of S(F) along F^-T dE is ∂S/∂E : dE. The jacobian is seeded at C (its value
+  // part is unused) only to generate the symmetric directions dE.
+  const Mat3d F_inverse_transpose = transpose(inverse(F));
+  return directional_jacobian(right_cauchy_green(F), true, [&](const Mat3<Dual>& seeded_c) {
+    return stepped_second_pk(seeded(F, F_inverse_transpose * derivative_of(seeded_c)), old, dt);
   });
 }
 

@@ -53,6 +53,9 @@ class Material {
   MaterialPointResult update(const Mat3d& F, const ViscousState& old, double dt) const;
   // Consistent tangent A_iJkL = ∂P_iJ/∂F_kL of update()'s first Piola-Kirchhoff stress.
   Tensor4 tangent(const Mat3d& F, const ViscousState& old, double dt) const;
+  // Consistent tangent ∂S_IJ/∂E_KL of update()'s second Piola-Kirchhoff stress (minor
+  // symmetric in KL), for total-Lagrangian elements written with S and E.
+  Tensor4 tangent_green_strain(const Mat3d& F, const ViscousState& old, double dt) const;
   // Instantaneous strain-energy density W(F) (Pa); update(F, ·, 0).first_pk = ∂W/∂F from rest.
   double instantaneous_energy(const Mat3d& F) const;
 
@@ -65,6 +68,10 @@ class Material {
   std::string description() const;
 
  private:
+  // S after a step, on double or Dual (defined in material.cpp, its only user).
+  template <class T>
+  Mat3<T> stepped_second_pk(const Mat3<T>& F, const ViscousState& old, double dt) const;
+
   std::string name_;
   MaterialLaw law_;
 };

@@ -90,6 +90,11 @@ struct Viscoelastic {
     for (std::size_t i = 0; i < terms.size(); ++i) s -= stepped_q(i, s0, old, dt);
     return s;
   }
+  // Consistent tangent ∂S_iso/∂E of stepped_stress (the isochoric block of a mixed element):
+  // [1 - Σ g_i (1 - h_i)] ∂S⁰_iso/∂E, computed as the exact derivative of the update.
+  Tensor4 stepped_tangent(const Mat3d& C, const ViscousState& old, double dt) const {
+    return green_strain_jacobian(C, [&](const Mat3<Dual>& c) { return stepped_stress(c, old, dt); });
+  }
   ViscousState advance(const Mat3d& C, const ViscousState& old, double dt) const {
     ViscousState next{std::vector<Mat3d>(terms.size()), elastic.stress(C)};
     for (std::size_t i = 0; i < terms.size(); ++i) next.q[i] = stepped_q(i, next.elastic_stress, old, dt);
