@@ -1,0 +1,69 @@
+// needlefem: command-line entry point. Parses the command line with CLI11 and dispatches
+// to the sub-commands; turns every error into one line on stderr and exit code 1.
+#include <cstdio>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include <fmt/core.h>
+
+#include "app/commands.hpp"
+#include "case/schema.hpp"
+
+namespace needlefem::app {
+
+namespace {
+std::vector<std::string> g_backend_options;
+}
+
+const std::vector<std::string>& backend_options() { return g_backend_options; }
+
+void CaseOptions::add_to(CLI::App& command, const std::string& default_out) {
+  out_dir = default_out;
+  command.add_option("case", case_file, "Case file (TOML); keys: `needlefem keys`")->required();
+  command.add_option("--set", overrides, "Override a case key, e.g. --set needle.radius_mm=0.83")
+      ->type_name("KEY=VALUE");
+  command.add_option("--out", out_dir, "Output directory")->capture_default_str();
+}
+
+}  // namespace needlefem::app
+
+int main(int argc, char** argv) {
+  using namespace needlefem;
+  // Everything after a bare "--" belongs to PETSc/SUNDIALS, untouched.
+  std::vector<std::string> args(argv + 1, argv + argc);
+  std::vector<std::string> own;
+  bool backend = false;
+  for (auto& a : args) {
+    if (!backend && a == "--") {
+      backend = true;
+      continue;
+    }
+    (backend ? app::g_backend_options : own).push_back(a);
+  }
+
+  CLI::App cli{"needlefem: nonlinear finite-element solver for needle insertion into soft tissue.\n"
+               "Case files are TOML; `needlefem keys` lists every key with unit, range and default.\n"
+               "Options after `--` are passed unchanged to PETSc and SUNDIALS."};
+  cli.require_subcommand(1);
+  cli.set_version_flag("--version", "needlefem 0.1.0");
+  app::add_mesh_command(cli);
+  app::add_keys_command(cli);
+  app::add_material_test_command(cli);
+  app::add_magnet_command(cli);
+  app::add_replay_command(cli);
+
+  try {
+    std::vector<std::string> reversed(own.rbegin(), own.rend());
+    cli.parse(reversed);
+  } catch (const CLI::ParseError& e) {
+    return cli.exit(e);
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "needlefem: error: {}\n", e.what());
+    return 1;
+  } catch (const std::string& e) {  // gmsh throws std::string
+    fmt::print(stderr, "needlefem: error: gmsh: {}\n", e);
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,66 @@
+// A validated, fully resolved case: every key of the schema (case/schema.cpp) with its value
+// from the case file, a --set override, or the schema default. Values are in the units their
+// key names carry (radius_mm, bevel_deg, ...); convert to SI where the physics starts.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+namespace needlefem {
+
+// One-line, user-facing input error: "FILE: key 'a.b': reason".
+class CaseError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class Case {
+ public:
+  // Reads and validates a TOML case file, then applies "key=value" overrides (from --set).
+  // Throws CaseError naming the file (or "--set"), the key and the reason.
+  static Case load(const std::filesystem::path& file, const std::vector<std::string>& overrides = {});
+  // Validates a TOML document given as text; `origin` names it in error messages.
+  static Case parse(const std::string& toml_text, const std::string& origin,
+                    const std::vector<std::string>& overrides = {});
+
+  const std::string& origin() const { return origin_; }
+
+  // Typed access by dotted key ("needle.radius_mm"). Asking for a key the schema does not
+  // know, or with the wrong type, is a programming error (std::logic_error).
+  double real(const std::string& key) const;
+  long integer(const std::string& key) const;
+  bool flag(const std::string& key) const;
+  std::string text(const std::string& key) const;
+  std::vector<double> reals(const std::string& key) const;
+  // Keys without a default (optional) may be absent.
+  bool has(const std::string& key) const;
+  std::optional<double> maybe_real(const std::string& key) const;
+  // A text key naming a file, resolved relative to the case file's folder ("" stays "").
+  std::filesystem::path path(const std::string& key) const;
+  // True when the key was given in the file or by --set rather than taken from the default.
+  bool given(const std::string& key) const;
+
+  // The fully resolved case, echoed into every output.
+  std::string to_toml() const;
+  nlohmann::json to_json() const;
+
+  // A CaseError message "ORIGIN: key 'KEY': REASON" for cross-key rules checked elsewhere.
+  CaseError error(const std::string& key, const std::string& reason) const;
+
+ // Opaque storage of the resolved values (defined in case.cpp).
+  struct Values;
+
+ private:
+  Case(std::string origin, std::filesystem::path base_dir, std::shared_ptr<const Values> values);
+  std::string origin_;
+  std::filesystem::path base_dir_;
+  std::shared_ptr<const Values> values_;
+};
+
+}  // namespace needlefem

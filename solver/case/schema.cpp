@@ -1,0 +1,253 @@
+#include "case/schema.hpp"
+
+#include <algorithm>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+namespace needlefem {
+
+namespace {
+
+
+KeySpec make(std::string key, KeyType type, KeyDefault fallback, std::string help) {
+  KeySpec s;
+  s.key = std::move(key);
+  s.type = type;
+  s.fallback = std::move(fallback);
+  s.help = std::move(help);
+  return s;
+}
+
+KeySpec real(std::string key, KeyDefault fallback, double min, double max, std::string help,
+             bool min_exclusive = true) {
+  KeySpec s = make(std::move(key), KeyType::Real, std::move(fallback), std::move(help));
+  s.min = min;
+  s.max = max;
+  s.min_exclusive = min_exclusive;
+  return s;
+}
+KeySpec integer(std::string key, long fallback, long min, long max, std::string help) {
+  KeySpec s = make(std::move(key), KeyType::Integer, fallback, std::move(help));
+  s.min = static_cast<double>(min);
+  s.max = static_cast<double>(max);
+  s.min_exclusive = false;
+  return s;
+}
+KeySpec flag(std::string key, bool fallback, std::string help) {
+  return make(std::move(key), KeyType::Flag, fallback, std::move(help));
+}
+KeySpec text(std::string key, std::string fallback, std::string help) {
+  return make(std::move(key), KeyType::Text, std::move(fallback), std::move(help));
+}
+KeySpec choice(std::string key, std::string fallback, std::vector<std::string> choices, std::string help) {
+  KeySpec s = make(std::move(key), KeyType::Choice, std::move(fallback), std::move(help));
+  s.choices = std::move(choices);
+  return s;
+}
+KeySpec reals(std::string key, KeyDefault fallback, std::size_t length, double min, double max,
+              std::string help, bool min_exclusive = false) {
+  KeySpec s = make(std::move(key), KeyType::RealList, std::move(fallback), std::move(help));
+  s.list_length = length;
+  s.min = min;
+  s.max = max;
+  s.min_exclusive = min_exclusive;
+  return s;
+}
+
+const std::vector<std::string> kFaceConditions{"free", "fixed", "roller", "normal-displacement", "displacement"};
+
+KeySpec face(const std::string& name, const std::string& fallback) {
+  return choice("block." + name, fallback, kFaceConditions,
+                "Condition on the block face " + name +
+                    ": free, fixed (all components), roller (normal component zero), "
+                    "normal-displacement (normal component of the applied affine field), "
+                    "displacement (all components of the applied affine field)");
+}
+
+std::vector<KeySpec> build_schema() {
+  return {
+      // --- scene --------------------------------------------------------------------------
+      choice("scene.kind", "brain-tip", {"brain-tip", "block"},
+             "brain-tip: tissue cube with a needle tip immersed at the entry face (paper 001); "
+             "block: a box with per-face conditions for homogeneous verification problems"),
+      text("scene.mesh_file", "",
+           "A user-supplied gmsh .msh (millimetres, second-order tets) with the same physical names, "
+           "used instead of generating one; relative to the case file"),
+
+      // --- tissue cube of the brain-tip scene -------------------------------------------------
+      real("tissue.cube_edge_mm", 12.0, 0.0, 1000.0, "Edge of the tissue cube; the entry face is z = 0"),
+      real("tissue.core_width_mm", 3.0, 0.0, 1000.0,
+           "Width of the square refined core around the needle axis, through the whole cube"),
+      real("tissue.core_element_mm", 0.4, 0.0, 100.0, "Element size inside the core (paper: 0.4)"),
+      real("tissue.outer_element_mm", 2.0, 0.0, 100.0, "Element size outside the core (paper: 2)"),
+      integer("tissue.curvature_elements", 0, 0, 360,
+              "If > 0, refine near curved needle faces to this many elements per 2*pi of curvature "
+              "(the paper used none: 0.4 mm everywhere in the core)"),
+
+      // --- needle tip ---------------------------------------------------------------------------
+      choice("needle.kind", "bevel", {"bevel", "compliant"},
+             "bevel: cylinder with a bevel plane and a side-profile tip fillet (paper 001); "
+             "compliant: magnetised head, thin neck (hinge) and shaft (paper 000)"),
+      real("needle.radius_mm", 0.5, 0.0, 100.0, "Needle (shaft and head) radius r"),
+      real("needle.bevel_deg", 20.0, 0.0, 90.0,
+           "Bevel angle alpha between the bevel plane and the needle axis (ignored when fillet = radius)"),
+      real("needle.fillet_mm", 0.25, 0.0, 100.0,
+           "Tip fillet radius tau: an arc in the side profile tangent to the bevel line and the opposite "
+           "generator; tau = radius gives the fully rounded (hemispherical) biopsy-style tip; 0 = sharp",
+           false),
+      real("needle.shaft_mm", 0.1, 0.0, 100.0, "Straight shaft behind the bevel heel (or behind the neck)"),
+      real("needle.head_length_mm", 3.5, 0.0, 100.0, "Compliant tip: magnetised head length L (cylinder + cone)"),
+      real("needle.neck_length_mm", 1.0, 0.0, 100.0, "Compliant tip: neck (hinge) length l"),
+      real("needle.neck_diameter_mm", 0.2, 0.0, 100.0, "Compliant tip: neck diameter d"),
+      real("needle.point_length_mm", 0.5, 0.0, 100.0, "Compliant tip: length of the conical point ending the head",
+           false),
+      flag("needle.mesh_volume", true,
+           "Also mesh the needle tip volume (region \"needle\", conforming on the cavity): used by the "
+           "deformable-needle option; the rigid needle needs only its geometry"),
+
+      // --- block scene ------------------------------------------------------------------------
+      reals("block.size_mm", std::vector<double>{1.0, 1.0, 1.0}, 3, 0.0, 1000.0,
+            "Block edges along x, y, z; the block spans [0, size] on each axis", true),
+      real("block.element_mm", 0.5, 0.0, 1000.0, "Element size in the block"),
+      face("x_min", "roller"), face("x_max", "normal-displacement"), face("y_min", "roller"),
+      face("y_max", "free"), face("z_min", "roller"), face("z_max", "free"),
+      reals("block.applied_gradient", std::vector<double>{1.2, 0, 0, 0, 1, 0, 0, 0, 1}, 9, -100.0, 100.0,
+            "Final deformation gradient F (row-major) of the affine field u = s(t) (F - I) X applied on "
+            "displacement faces, s(t) rising from 0 to 1 over loading.ramp_s"),
+
+      // --- needle motion (brain-tip) and loading history (block) -------------------------------
+      real("motion.insertion_speed_mm_per_s", 1.0, 0.0, 1e4, "Needle insertion speed along its axis",
+           false),
+      real("motion.rotation_speed_deg_per_s", 180.0, -1e6, 1e6,
+           "Needle rotation speed about its axis (paper: pi rad/s = 180 deg/s)"),
+      real("motion.duration_s", 0.1, 0.0, 1e6, "Duration of the insertion and rotation"),
+      real("loading.ramp_s", 1.0, 0.0, 1e6, "Block: time over which the applied field rises linearly to F"),
+      real("loading.hold_s", 0.0, 0.0, 1e6, "Block: time the applied field is then held", false),
+
+      // --- tissue material (physics/material) ------------------------------------------------
+      // Hyperelastic constants are INSTANTANEOUS moduli (the elastic response before any Prony
+      // relaxation); the key names say so, so long-term moduli are never entered silently.
+      choice("material.preset", "miller-brain", {"miller-brain", "miller-brain-c10-c20", "custom"},
+             "miller-brain: Miller's brain model, C10 = C01 = 263 Pa, C20 = C02 = 491 Pa (instantaneous), "
+             "Prony g = 0.450, 0.365 at tau = 0.5, 50 s; miller-brain-c10-c20: paper 001's literal print "
+             "C10 = 263, C20 = 491 Pa with the same Prony series; custom: the c.._instantaneous_pa and "
+             "prony_* keys below"),
+      choice("material.model", "polynomial", {"polynomial", "corotational-linear"},
+             "polynomial: decoupled near-incompressible polynomial (N = 2) hyper-viscoelastic law; "
+             "corotational-linear: paper 000's co-rotational linear elastic tissue (youngs_modulus_pa, "
+             "poisson_ratio)"),
+      real("material.c10_instantaneous_pa", std::monostate{}, -1e9, 1e9,
+           "Custom preset: INSTANTANEOUS polynomial coefficient C10 (default 0)", false),
+      real("material.c01_instantaneous_pa", std::monostate{}, -1e9, 1e9,
+           "Custom preset: INSTANTANEOUS polynomial coefficient C01 (default 0)", false),
+      real("material.c20_instantaneous_pa", std::monostate{}, -1e9, 1e9,
+           "Custom preset: INSTANTANEOUS polynomial coefficient C20 (default 0)", false),
+      real("material.c11_instantaneous_pa", std::monostate{}, -1e9, 1e9,
+           "Custom preset: INSTANTANEOUS polynomial coefficient C11 (default 0)", false),
+      real("material.c02_instantaneous_pa", std::monostate{}, -1e9, 1e9,
+           "Custom preset: INSTANTANEOUS polynomial coefficient C02 (default 0)", false),
+      real("material.bulk_modulus_pa", 1.0e7, 0.0, 1e15,
+           "Bulk modulus K of the volumetric energy U(J) = K/2 (J - 1)^2 (Abaqus D1 = 2/K); the default "
+           "is about 1e4 times Miller's instantaneous shear modulus (1052 Pa)"),
+      reals("material.prony_g", std::monostate{}, 0, 0.0, 1.0,
+            "Custom preset: Prony relative moduli g_i of the isochoric stress (sum < 1; none = elastic)"),
+      reals("material.prony_tau_s", std::monostate{}, 0, 0.0, 1e12,
+            "Custom preset: Prony relaxation times tau_i, one per prony_g entry", true),
+      real("material.youngs_modulus_pa", 3050.0, 0.0, 1e15,
+           "corotational-linear: Young's modulus E (default: 2 mu (1 + nu) with Miller's instantaneous "
+           "shear modulus mu = 1052 Pa)"),
+      real("material.poisson_ratio", 0.45, -1.0, 0.5, "corotational-linear: Poisson's ratio nu (< 0.5)"),
+
+      // --- mesh options -----------------------------------------------------------------------
+      integer("mesh.order", 2, 1, 2, "Element order: 2 = 10-node tets (default), 1 = 4-node tets"),
+      flag("mesh.optimize_high_order", true,
+           "Run gmsh's high-order optimisation (fixes curved tets next to needle faces)"),
+      integer("mesh.partitions", 1, 1, 4096,
+              "METIS element partitions (MPI ranks); the mesh report compares their interface size "
+              "with a naive split"),
+      integer("mesh.seed", 1, 0, 1000000, "Seed of gmsh's random factor, fixed for deterministic meshes"),
+  };
+}
+
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      std::size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+std::string type_name(const KeySpec& spec) {
+  switch (spec.type) {
+    case KeyType::Real: return "real";
+    case KeyType::Integer: return "integer";
+    case KeyType::Flag: return "true|false";
+    case KeyType::Text: return "string";
+    case KeyType::Choice: return fmt::format("{}", fmt::join(spec.choices, "|"));
+    case KeyType::RealList:
+      return spec.list_length ? fmt::format("{} reals", spec.list_length) : std::string("list of reals");
+  }
+  return "";
+}
+
+std::string default_text(const KeyDefault& value) {
+  return std::visit(
+      [](const auto& v) -> std::string {
+        using T = std::decay_t<decltype(v)>;
+        if constexpr (std::is_same_v<T, std::monostate>) return "none (optional)";
+        else if constexpr (std::is_same_v<T, bool>) return v ? "true" : "false";
+        else if constexpr (std::is_same_v<T, std::string>) return v.empty() ? "\"\"" : "\"" + v + "\"";
+        else if constexpr (std::is_same_v<T, std::vector<double>>) return fmt::format("[{}]", fmt::join(v, ", "));
+        else return fmt::format("{}", v);
+      },
+      value);
+}
+
+}  // namespace
+
+const std::vector<KeySpec>& case_schema() {
+  static const std::vector<KeySpec> schema = build_schema();
+  return schema;
+}
+
+const KeySpec* find_key(const std::string& key) {
+  for (const auto& spec : case_schema())
+    if (spec.key == key) return &spec;
+  return nullptr;
+}
+
+std::string closest_key(const std::string& key) {
+  std::string best;
+  std::size_t best_distance = std::max<std::size_t>(3, key.size() / 4) + 1;
+  for (const auto& spec : case_schema()) {
+    std::size_t d = edit_distance(key, spec.key);
+    if (d < best_distance) {
+      best_distance = d;
+      best = spec.key;
+    }
+  }
+  return best;
+}
+
+std::string describe_key(const KeySpec& spec) {
+  std::string range;
+  if (spec.type == KeyType::Real || spec.type == KeyType::Integer || spec.type == KeyType::RealList) {
+    const bool has_min = spec.min > -1e299, has_max = spec.max < 1e299;
+    if (has_min || has_max)
+      range = fmt::format(", range {}{}, {}]", has_min ? (spec.min_exclusive ? "(" : "[") : "(",
+                          has_min ? fmt::format("{}", spec.min) : "-inf",
+                          has_max ? fmt::format("{}", spec.max) : "inf");
+  }
+  return fmt::format("{} ({}{}, default {})\n    {}", spec.key, type_name(spec), range,
+                     default_text(spec.fallback), spec.help);
+}
+
+}  // namespace needlefem

@@ -1,0 +1,35 @@
+// The case schema: the single place that knows every case key, its type, unit, range,
+// default and help text. Validation, `needlefem keys` and the echoed case all read it.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace needlefem {
+
+enum class KeyType { Real, Integer, Flag, Text, Choice, RealList };
+
+// A default value; monostate marks an optional key without default.
+using KeyDefault = std::variant<std::monostate, double, long, bool, std::string, std::vector<double>>;
+
+struct KeySpec {
+  std::string key;                  // dotted: "needle.radius_mm"
+  KeyType type = KeyType::Real;
+  KeyDefault fallback;              // value when the case does not give the key
+  std::string help;
+  double min = -1e300, max = 1e300;  // inclusive numeric range (per element for lists)
+  bool min_exclusive = false;
+  std::vector<std::string> choices;  // for KeyType::Choice
+  std::size_t list_length = 0;       // for KeyType::RealList; 0 = any non-empty length
+};
+
+const std::vector<KeySpec>& case_schema();
+const KeySpec* find_key(const std::string& key);
+// The closest known key (edit distance), for "did you mean" hints; empty if none is close.
+std::string closest_key(const std::string& key);
+// Human-readable description of one key (type, range, default) for --help and `keys`.
+std::string describe_key(const KeySpec& spec);
+
+}  // namespace needlefem

@@ -1,0 +1,75 @@
+// Needle-tip shapes of the two papers, in metres, with the needle axis along +z and the
+// rear face of the tip in the plane z = 0 (flush with the tissue's entry face).
+//
+// Bevel tip (paper 001, Fig. 1): cylinder of radius r; bevel plane at angle alpha to the axis,
+// heel at (x = +r, z = shaft), sharp tip on the opposite generator x = -r at
+// z = shaft + 2r/tan(alpha). The sharp tip is rounded in the side profile (x-z plane) by an
+// arc of radius tau tangent to the bevel line and to the generator x = -r; the profile is
+// extruded across y and intersected with the cylinder. Arc centre:
+//   x_c = -r + tau,  z_c = shaft + (2r cos(alpha) - tau (1 + cos(alpha))) / sin(alpha),
+// tangent length from the sharp tip along either line = tau / tan(alpha/2).
+// tau = r is the fully rounded biopsy tip: a hemisphere on the shaft (alpha does not apply).
+//
+// Compliant tip (paper 000, Fig. 2b): shaft (radius r), neck (diameter d, length l),
+// magnetised head (radius r, length L) whose last point_length is a cone.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace needlefem {
+
+class Case;
+
+// A violated geometric validity rule: its stable name and a sentence with the numbers.
+struct RuleViolation {
+  std::string rule;
+  std::string message;
+};
+
+struct BevelTip {
+  double radius = 0, bevel_rad = 0, fillet = 0, shaft = 0;
+
+  bool rounded() const;   // tau == r: hemispherical end
+  double length() const;  // axial extent from the rear face to the foremost point
+  // Height of the side profile above the rear face at lateral position x in [-r, r]
+  // (not used for the rounded tip, whose top also depends on y).
+  double profile_top(double x) const;
+  double fillet_centre_x() const;
+  double fillet_centre_z() const;
+  double fillet_tangent_x() const;  // x of the arc's tangent point on the bevel line
+  // Volume by an independent route: the rounded tip in closed form; the bevel tip as
+  // the integral of the profile height over the disk, V = int_{-r}^{r} 2 sqrt(r^2-x^2) h(x) dx,
+  // evaluated with Gauss-Legendre on pieces split at the profile's kinks (x = x_tangent).
+  double analytic_volume() const;
+  std::vector<RuleViolation> violations() const;
+};
+
+struct CompliantTip {
+  double radius = 0, shaft = 0, neck_length = 0, neck_diameter = 0, head_length = 0, point_length = 0;
+  double length() const;
+  double analytic_volume() const;
+  std::vector<RuleViolation> violations() const;
+};
+
+// The needle described by a case ([needle] table), tagged by kind.
+struct NeedleTip {
+  enum class Kind { Bevel, Compliant } kind = Kind::Bevel;
+  BevelTip bevel;
+  CompliantTip compliant;
+  double radius() const { return kind == Kind::Bevel ? bevel.radius : compliant.radius; }
+  double length() const { return kind == Kind::Bevel ? bevel.length() : compliant.length(); }
+  double analytic_volume() const;
+  std::vector<RuleViolation> violations() const;
+  std::string describe() const;
+};
+
+NeedleTip needle_tip_from_case(const Case& c);
+
+// Rules of the brain-tip scene as a whole: the tip against the cube and its refined core.
+std::vector<RuleViolation> brain_tip_scene_violations(const Case& c, const NeedleTip& tip);
+
+// Throws CaseError listing every violated rule of the scene described by the case.
+void require_valid_scene(const Case& c);
+
+}  // namespace needlefem

@@ -1,0 +1,28 @@
+#include "mesh/gmsh_session.hpp"
+
+#include <stdexcept>
+
+#include <gmsh.h>
+
+namespace needlefem {
+
+GmshSession::GmshSession(const std::string& model_name) {
+  gmsh::initialize(0, nullptr, /*readConfigFiles=*/false);
+  gmsh::option::setNumber("General.Terminal", 0);
+  gmsh::option::setNumber("General.Verbosity", 1);
+  // One thread and a fixed seed: the same case gives the same mesh, node for node.
+  gmsh::option::setNumber("General.NumThreads", 1);
+  gmsh::model::add(model_name);
+}
+
+GmshSession::~GmshSession() { gmsh::finalize(); }
+
+void GmshSession::guarded(const std::function<void()>& body) {
+  try {
+    body();
+  } catch (const std::string& message) {
+    throw std::runtime_error("gmsh: " + message);
+  }
+}
+
+}  // namespace needlefem

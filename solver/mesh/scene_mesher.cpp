@@ -1,0 +1,259 @@
+// Scene construction (all CAD in millimetres, as the .msh is):
+//  brain-tip: box [-E/2, E/2]^2 x [0, E], a square core [-c/2, c/2]^2 x [0, E] and the needle tip
+//  are fragmented together so that every interface is conforming; the tip sits with its rear
+//  face on z = 0 and points into +z. Element size: a Box field, core_element inside the core,
+//  outer_element outside (paper 001: 0.4 / 2 mm), optionally refined by curvature.
+//  block: box [0, Lx] x [0, Ly] x [0, Lz] with uniform element size.
+#include "mesh/scene_mesher.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <set>
+#include <vector>
+
+#include <gmsh.h>
+
+#include "case/case.hpp"
+#include "geometry/needle_tip.hpp"
+#include "mesh/gmsh_session.hpp"
+
+namespace needlefem {
+
+namespace {
+
+namespace occ = gmsh::model::occ;
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kMmPerM = 1e3;
+
+using DimTags = gmsh::vectorpair;
+
+// Side profile of the bevel tip in the plane y = y0, as a closed OCC face (mm). The profile is
+// padded beyond the cylinder (by `pad`) on the sides where it does not shape the needle, so the
+// later intersection never meets coincident faces.
+int bevel_profile_face(const BevelTip& tip, double y0, double pad) {
+  const double r = tip.radius * kMmPerM, shaft = tip.shaft * kMmPerM;
+  std::vector<int> points{occ::addPoint(-r - pad, y0, -pad), occ::addPoint(r + pad, y0, -pad),
+                          occ::addPoint(r + pad, y0, shaft), occ::addPoint(r, y0, shaft)};
+  std::vector<int> curves;
+  auto line_to = [&](int next) {
+    curves.push_back(occ::addLine(points.back(), next));
+    points.push_back(next);
+  };
+  for (std::size_t i = 1; i < points.size(); ++i) curves.push_back(occ::addLine(points[i - 1], points[i]));
+  if (tip.fillet > 0) {
+    const double xc = tip.fillet_centre_x() * kMmPerM, zc = tip.fillet_centre_z() * kMmPerM;
+    const double tau = tip.fillet * kMmPerM, a = tip.bevel_rad;
+    const int tangent_bevel = occ::addPoint(xc + tau * std::cos(a), y0, zc + tau * std::sin(a));
+    line_to(tangent_bevel);
+    const int centre = occ::addPoint(xc, y0, zc);
+    const int tangent_generator = occ::addPoint(-r, y0, zc);
+    curves.push_back(occ::addCircleArc(tangent_bevel, centre, tangent_generator));
+    points.push_back(tangent_generator);
+    line_to(occ::addPoint(-r - pad, y0, zc));
+  } else {
+    const double z_tip = tip.length() * kMmPerM;
+    line_to(occ::addPoint(-r, y0, z_tip));
+    line_to(occ::addPoint(-r - pad, y0, z_tip));
+  }
+  curves.push_back(occ::addLine(points.back(), points.front()));
+  return occ::addPlaneSurface({occ::addCurveLoop(curves)});
+}
+
+int add_bevel_tip(const BevelTip& tip) {
+  const double r = tip.radius * kMmPerM, shaft = tip.shaft * kMmPerM;
+  DimTags out;
+  std::vector<DimTags> out_map;
+  if (tip.rounded()) {
+    const int cylinder = occ::addCylinder(0, 0, 0, 0, 0, shaft, r);
+    const int hemisphere = occ::addSphere(0, 0, shaft, r, -1, 0.0, kPi / 2, 2 * kPi);
+    occ::fuse({{3, cylinder}}, {{3, hemisphere}}, out, out_map);
+  } else {
+    const double length = tip.length() * kMmPerM, pad = 0.1 * r;
+    const int cylinder = occ::addCylinder(0, 0, 0, 0, 0, length + pad, r);
+    const int profile = bevel_profile_face(tip, -r - pad, pad);
+    DimTags prism;
+    occ::extrude({{2, profile}}, 0, 2 * (r + pad), 0, prism);
+    auto volume = std::find_if(prism.begin(), prism.end(), [](const auto& dt) { return dt.first == 3; });
+    occ::intersect({{3, cylinder}}, {*volume}, out, out_map);
+  }
+  if (out.size() != 1 || out[0].first != 3) throw std::runtime_error("gmsh: the needle tip is not a single solid");
+  return out[0].second;
+}
+
+int add_compliant_tip(const CompliantTip& tip) {
+  const double r = tip.radius * kMmPerM, s = tip.shaft * kMmPerM, l = tip.neck_length * kMmPerM;
+  const double d = tip.neck_diameter * kMmPerM, head = tip.head_length * kMmPerM;
+  const double point = tip.point_length * kMmPerM;
+  DimTags parts{{3, occ::addCylinder(0, 0, 0, 0, 0, s, r)}, {3, occ::addCylinder(0, 0, s, 0, 0, l, d / 2)},
+                {3, occ::addCylinder(0, 0, s + l, 0, 0, head - point, r)}};
+  if (point > 0) parts.push_back({3, occ::addCone(0, 0, s + l + head - point, 0, 0, point, r, 0)});
+  DimTags out;
+  std::vector<DimTags> out_map;
+  occ::fuse({parts.front()}, DimTags(parts.begin() + 1, parts.end()), out, out_map);
+  if (out.size() != 1) throw std::runtime_error("gmsh: the compliant tip is not a single solid");
+  return out[0].second;
+}
+
+std::set<int> tags_of(const DimTags& dim_tags) {
+  std::set<int> tags;
+  for (const auto& [dim, tag] : dim_tags)
+    if (dim == 3) tags.insert(tag);
+  return tags;
+}
+
+std::set<int> minus(const std::set<int>& a, const std::set<int>& b) {
+  std::set<int> out;
+  std::set_difference(a.begin(), a.end(), b.begin(), b.end(), std::inserter(out, out.end()));
+  return out;
+}
+
+void add_physical(int dim, const std::vector<int>& tags, const std::string& name) {
+  if (tags.empty()) return;
+  gmsh::model::setPhysicalName(dim, gmsh::model::addPhysicalGroup(dim, tags), name);
+}
+
+// Name of the outer box face a surface lies on ("x_min", ...), or "" if none.
+std::string box_face_of(int surface, const std::array<double, 3>& lo, const std::array<double, 3>& hi) {
+  double b[6];
+  gmsh::model::getBoundingBox(2, surface, b[0], b[1], b[2], b[3], b[4], b[5]);
+  const double tol = 1e-6 * std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+  static const char* names[3][2] = {{"x_min", "x_max"}, {"y_min", "y_max"}, {"z_min", "z_max"}};
+  for (int axis = 0; axis < 3; ++axis) {
+    if (std::abs(b[axis] - lo[axis]) < tol && std::abs(b[axis + 3] - lo[axis]) < tol) return names[axis][0];
+    if (std::abs(b[axis] - hi[axis]) < tol && std::abs(b[axis + 3] - hi[axis]) < tol) return names[axis][1];
+  }
+  return "";
+}
+
+std::vector<int> surfaces_of(const std::set<int>& volumes) {
+  DimTags boundary;
+  DimTags dim_tags;
+  for (int v : volumes) dim_tags.push_back({3, v});
+  gmsh::model::getBoundary(dim_tags, boundary, /*combined=*/false, /*oriented=*/false);
+  std::set<int> unique;
+  for (const auto& [dim, tag] : boundary) unique.insert(std::abs(tag));
+  return {unique.begin(), unique.end()};
+}
+
+void set_mesh_options(const Case& c) {
+  gmsh::option::setNumber("Mesh.RandomSeed", static_cast<double>(c.integer("mesh.seed")));
+  gmsh::option::setNumber("Mesh.ElementOrder", static_cast<double>(c.integer("mesh.order")));
+  gmsh::option::setNumber("Mesh.SecondOrderLinear", 0);  // mid-side nodes on the curved CAD faces
+  gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
+  gmsh::option::setNumber("Mesh.Binary", 1);
+  gmsh::option::setNumber("Mesh.SaveAll", 0);
+}
+
+void generate_and_write(const Case& c, const std::filesystem::path& msh_file) {
+  gmsh::model::mesh::generate(3);
+  if (c.integer("mesh.order") == 2 && c.flag("mesh.optimize_high_order"))
+    gmsh::model::mesh::optimize("HighOrder");
+  std::filesystem::create_directories(msh_file.parent_path().empty() ? "." : msh_file.parent_path());
+  // Write beside and rename, so an interrupted run never leaves a truncated .msh behind.
+  const auto partial = msh_file.string() + ".partial.msh";
+  gmsh::write(partial);
+  std::filesystem::rename(partial, msh_file);
+}
+
+SceneMeshInfo mesh_brain_tip(const Case& c, const std::filesystem::path& msh_file) {
+  const NeedleTip tip = needle_tip_from_case(c);
+  const double edge = c.real("tissue.cube_edge_mm"), core = c.real("tissue.core_width_mm");
+  SceneMeshInfo info;
+  info.needle_description = tip.describe();
+  info.needle_analytic_volume_m3 = tip.analytic_volume();
+  info.domain_volume_m3 = std::pow(edge / kMmPerM, 3);
+
+  const int needle = tip.kind == NeedleTip::Kind::Bevel ? add_bevel_tip(tip.bevel) : add_compliant_tip(tip.compliant);
+  occ::synchronize();
+  double cad_volume_mm3 = 0;
+  occ::getMass(3, needle, cad_volume_mm3);
+  info.needle_cad_volume_m3 = cad_volume_mm3 / std::pow(kMmPerM, 3);
+
+  const int cube = occ::addBox(-edge / 2, -edge / 2, 0, edge, edge, edge);
+  const int core_box = occ::addBox(-core / 2, -core / 2, 0, core, core, edge);
+  DimTags pieces;
+  std::vector<DimTags> piece_map;  // per input: cube, core, needle
+  occ::fragment({{3, cube}}, {{3, core_box}, {3, needle}}, pieces, piece_map);
+  const std::set<int> needle_volumes = tags_of(piece_map[2]);
+  const std::set<int> core_volumes = minus(tags_of(piece_map[1]), needle_volumes);
+  const std::set<int> outer_volumes = minus(tags_of(piece_map[0]), tags_of(piece_map[1]));
+  occ::synchronize();
+
+  std::set<int> tissue_volumes = core_volumes;
+  tissue_volumes.insert(outer_volumes.begin(), outer_volumes.end());
+  const std::vector<int> needle_surfaces = surfaces_of(needle_volumes);
+  std::map<std::string, std::vector<int>> groups;
+  const std::array<double, 3> lo{-edge / 2, -edge / 2, 0}, hi{edge / 2, edge / 2, edge};
+  for (int s : surfaces_of(tissue_volumes)) {
+    const bool on_needle = std::count(needle_surfaces.begin(), needle_surfaces.end(), s) > 0;
+    const std::string face = box_face_of(s, lo, hi);
+    if (on_needle) groups["cavity"].push_back(s);
+    else if (face == "z_min") groups["entry"].push_back(s);
+    else if (!face.empty()) {
+      groups[face].push_back(s);
+      groups["fixed"].push_back(s);
+    }
+  }
+  for (int s : needle_surfaces)
+    if (box_face_of(s, lo, hi) == "z_min") groups["needle_rear"].push_back(s);
+  if (groups["cavity"].empty() || groups["entry"].empty() || groups["needle_rear"].empty())
+    throw std::runtime_error("gmsh: could not identify the cavity, entry and needle-rear surfaces");
+  for (const auto& [name, tags] : groups) add_physical(2, tags, name);
+  add_physical(3, {core_volumes.begin(), core_volumes.end()}, "tissue_core");
+  add_physical(3, {outer_volumes.begin(), outer_volumes.end()}, "tissue_outer");
+  if (c.flag("needle.mesh_volume")) add_physical(3, {needle_volumes.begin(), needle_volumes.end()}, "needle");
+
+  // Element size: core_element inside the core box (its faces included), outer_element outside.
+  const int box_field = gmsh::model::mesh::field::add("Box");
+  gmsh::model::mesh::field::setNumber(box_field, "VIn", c.real("tissue.core_element_mm"));
+  gmsh::model::mesh::field::setNumber(box_field, "VOut", c.real("tissue.outer_element_mm"));
+  const double pad = 1e-6 * edge;
+  gmsh::model::mesh::field::setNumber(box_field, "XMin", -core / 2 - pad);
+  gmsh::model::mesh::field::setNumber(box_field, "XMax", core / 2 + pad);
+  gmsh::model::mesh::field::setNumber(box_field, "YMin", -core / 2 - pad);
+  gmsh::model::mesh::field::setNumber(box_field, "YMax", core / 2 + pad);
+  gmsh::model::mesh::field::setNumber(box_field, "ZMin", -pad);
+  gmsh::model::mesh::field::setNumber(box_field, "ZMax", edge + pad);
+  gmsh::model::mesh::field::setAsBackgroundMesh(box_field);
+  gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
+  gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
+  gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", static_cast<double>(c.integer("tissue.curvature_elements")));
+  set_mesh_options(c);
+  generate_and_write(c, msh_file);
+  return info;
+}
+
+SceneMeshInfo mesh_block(const Case& c, const std::filesystem::path& msh_file) {
+  const auto size = c.reals("block.size_mm");
+  const int box = occ::addBox(0, 0, 0, size[0], size[1], size[2]);
+  occ::synchronize();
+  const std::array<double, 3> lo{0, 0, 0}, hi{size[0], size[1], size[2]};
+  for (int s : surfaces_of({box})) add_physical(2, {s}, box_face_of(s, lo, hi));
+  add_physical(3, {box}, "tissue");
+  const double h = c.real("block.element_mm");
+  gmsh::option::setNumber("Mesh.MeshSizeMin", h);
+  gmsh::option::setNumber("Mesh.MeshSizeMax", h);
+  set_mesh_options(c);
+  generate_and_write(c, msh_file);
+  SceneMeshInfo info;
+  info.domain_volume_m3 = size[0] * size[1] * size[2] / std::pow(kMmPerM, 3);
+  return info;
+}
+
+}  // namespace
+
+SceneMeshInfo build_scene_mesh(const Case& c, const std::filesystem::path& msh_file) {
+  require_valid_scene(c);
+  const auto start = std::chrono::steady_clock::now();
+  SceneMeshInfo info;
+  GmshSession session("needlefem");
+  GmshSession::guarded([&] {
+    info = c.text("scene.kind") == "block" ? mesh_block(c, msh_file) : mesh_brain_tip(c, msh_file);
+  });
+  info.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return info;
+}
+
+}  // namespace needlefem

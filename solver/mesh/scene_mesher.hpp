@@ -1,0 +1,31 @@
+// Builds the scene geometry of a case with the gmsh C++ API (OpenCASCADE kernel), meshes it
+// with second- (or first-) order tetrahedra and writes a .msh (millimetres).
+//
+// Physical names written (the contract with model/read_msh and user-supplied meshes):
+//   volumes  "tissue_core", "tissue_outer" (brain-tip) or "tissue" (block); "needle" (optional)
+//   surfaces brain-tip: "entry" (z = 0 face of the tissue), "x_min" "x_max" "y_min" "y_max"
+//            "z_max" (the five skull-fixed faces), "fixed" (their union), "cavity" (tissue
+//            faces touching the needle tip), "needle_rear" (rear face of the tip, z = 0)
+//            block: "x_min" ... "z_max"
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+namespace needlefem {
+
+class Case;
+
+struct SceneMeshInfo {
+  std::string needle_description;  // empty for the block scene
+  double needle_cad_volume_m3 = 0;       // from the OpenCASCADE model
+  double needle_analytic_volume_m3 = 0;  // from geometry/needle_tip (independent)
+  double domain_volume_m3 = 0;           // cube or block without the cavity: the bounding solid
+  double seconds = 0;
+};
+
+// Throws CaseError for impossible geometry (naming the violated rule) and std::runtime_error
+// when gmsh fails.
+SceneMeshInfo build_scene_mesh(const Case& c, const std::filesystem::path& msh_file);
+
+}  // namespace needlefem

@@ -1,0 +1,160 @@
+#include "model/read_msh.hpp"
+
+#include <algorithm>
+#include <map>
+#include <stdexcept>
+#include <unordered_map>
+
+#include <fmt/format.h>
+#include <gmsh.h>
+
+#include "mesh/gmsh_session.hpp"
+#include "model/tet_geometry.hpp"
+
+namespace needlefem {
+
+namespace {
+
+constexpr double kMPerMm = 1e-3;
+constexpr int kGmshTet4 = 4, kGmshTet10 = 11, kGmshTri3 = 2, kGmshTri6 = 9;
+
+struct FaceKey {
+  std::array<int, 3> corners;
+  bool operator==(const FaceKey& o) const { return corners == o.corners; }
+};
+struct FaceKeyHash {
+  std::size_t operator()(const FaceKey& k) const {
+    return (static_cast<std::size_t>(k.corners[0]) * 73856093u) ^ (static_cast<std::size_t>(k.corners[1]) * 19349663u) ^
+           (static_cast<std::size_t>(k.corners[2]) * 83492791u);
+  }
+};
+FaceKey key_of(int a, int b, int c) {
+  std::array<int, 3> k{a, b, c};
+  std::sort(k.begin(), k.end());
+  return {k};
+}
+
+bool is_tissue(const std::string& region) { return region.rfind("tissue", 0) == 0; }
+
+}  // namespace
+
+TetMesh read_msh(const std::filesystem::path& file) {
+  auto fail = [&](const std::string& reason) { return std::runtime_error(file.string() + ": " + reason); };
+  if (!std::filesystem::exists(file)) throw fail("mesh file not found");
+  TetMesh mesh;
+  GmshSession session("read");
+  std::vector<std::size_t> all_node_tags;
+  std::vector<double> all_coords;
+  std::vector<std::pair<std::string, std::vector<std::size_t>>> surfaces;  // name, node tags
+  int element_type = 0;
+  try {
+    gmsh::open(file.string());
+    std::vector<double> parametric;
+    gmsh::model::mesh::getNodes(all_node_tags, all_coords, parametric, -1, -1, false, false);
+    gmsh::vectorpair groups;
+    gmsh::model::getPhysicalGroups(groups, 3);
+    for (const auto& [dim, group] : groups) {
+      std::string name;
+      gmsh::model::getPhysicalName(dim, group, name);
+      if (name.empty()) name = fmt::format("volume_{}", group);
+      const int region = static_cast<int>(mesh.region_names.size());
+      mesh.region_names.push_back(name);
+      std::vector<int> entities;
+      gmsh::model::getEntitiesForPhysicalGroup(dim, group, entities);
+      for (int entity : entities) {
+        std::vector<int> types;
+        std::vector<std::vector<std::size_t>> element_tags, node_tags;
+        gmsh::model::mesh::getElements(types, element_tags, node_tags, 3, entity);
+        for (std::size_t t = 0; t < types.size(); ++t) {
+          if (types[t] != kGmshTet10 && types[t] != kGmshTet4)
+            throw fail(fmt::format("region '{}' has gmsh element type {}; only 4- and 10-node tetrahedra are supported",
+                                   name, types[t]));
+          if (element_type && element_type != types[t]) throw fail("mixes 4- and 10-node tetrahedra");
+          element_type = types[t];
+          for (std::size_t tag : node_tags[t]) mesh.tet_nodes.push_back(static_cast<int>(tag));
+          mesh.tet_region.insert(mesh.tet_region.end(), element_tags[t].size(), region);
+        }
+      }
+    }
+    gmsh::model::getPhysicalGroups(groups, 2);
+    for (const auto& [dim, group] : groups) {
+      std::string name;
+      gmsh::model::getPhysicalName(dim, group, name);
+      std::vector<int> entities;
+      gmsh::model::getEntitiesForPhysicalGroup(dim, group, entities);
+      std::vector<std::size_t> face_nodes;
+      for (int entity : entities) {
+        std::vector<int> types;
+        std::vector<std::vector<std::size_t>> element_tags, node_tags;
+        gmsh::model::mesh::getElements(types, element_tags, node_tags, 2, entity);
+        for (std::size_t t = 0; t < types.size(); ++t) {
+          if (types[t] != kGmshTri3 && types[t] != kGmshTri6)
+            throw fail(fmt::format("surface '{}' has gmsh element type {}; expected triangles", name, types[t]));
+          face_nodes.insert(face_nodes.end(), node_tags[t].begin(), node_tags[t].end());
+        }
+      }
+      surfaces.emplace_back(name.empty() ? fmt::format("surface_{}", group) : name, std::move(face_nodes));
+    }
+  } catch (const std::string& message) {
+    throw fail("gmsh: " + message);
+  }
+  if (std::none_of(mesh.region_names.begin(), mesh.region_names.end(), is_tissue))
+    throw fail("no physical volume whose name starts with 'tissue'");
+  if (mesh.tet_region.empty()) throw fail("no tetrahedra in the physical volumes");
+  mesh.nodes_per_tet = element_type == kGmshTet10 ? 10 : 4;
+
+  // Compact numbering over the nodes the tetrahedra use, in gmsh's node order.
+  std::unordered_map<std::size_t, std::size_t> position;
+  for (std::size_t i = 0; i < all_node_tags.size(); ++i) position[all_node_tags[i]] = i;
+  std::vector<int> index_of(all_node_tags.size(), -1);
+  for (int& tag : mesh.tet_nodes) {
+    const std::size_t p = position.at(static_cast<std::size_t>(tag));
+    if (index_of[p] < 0) index_of[p] = 0;
+    tag = static_cast<int>(p);
+  }
+  int next = 0;
+  for (std::size_t p = 0; p < index_of.size(); ++p)
+    if (index_of[p] == 0) {
+      index_of[p] = next++;
+      mesh.nodes.push_back({all_coords[3 * p] * kMPerMm, all_coords[3 * p + 1] * kMPerMm, all_coords[3 * p + 2] * kMPerMm});
+    }
+  for (int& p : mesh.tet_nodes) p = index_of[p];
+
+  // Every tet face, tissue faces first, to orient boundary faces outward of their owner.
+  std::unordered_map<FaceKey, std::size_t, FaceKeyHash> owner;
+  static const int face_corners[4][3] = {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {1, 2, 3}};
+  for (int pass = 0; pass < 2; ++pass)
+    for (std::size_t e = 0; e < mesh.tet_count(); ++e) {
+      if (is_tissue(mesh.region_names[mesh.tet_region[e]]) != (pass == 0)) continue;
+      const int* t = mesh.tet(e);
+      for (const auto& f : face_corners) owner.emplace(key_of(t[f[0]], t[f[1]], t[f[2]]), e);
+    }
+  const int per_face = mesh.nodes_per_face();
+  for (auto& [name, tags] : surfaces) {
+    std::vector<int>& faces = mesh.surface_faces[name];
+    for (std::size_t f = 0; f + per_face <= tags.size(); f += per_face) {
+      std::array<int, 6> v{};
+      for (int k = 0; k < per_face; ++k) {
+        const auto it = position.find(tags[f + k]);
+        if (it == position.end() || index_of[it->second] < 0)
+          throw fail(fmt::format("surface '{}' has a node that belongs to no tetrahedron", name));
+        v[k] = index_of[it->second];
+      }
+      const auto own = owner.find(key_of(v[0], v[1], v[2]));
+      if (own == owner.end()) throw fail(fmt::format("surface '{}' has a face that bounds no tetrahedron", name));
+      const int* t = mesh.tet(own->second);
+      int opposite = t[0];
+      for (int k = 0; k < 4; ++k)
+        if (t[k] != v[0] && t[k] != v[1] && t[k] != v[2]) opposite = t[k];
+      if (oriented_volume(mesh.nodes[v[0]], mesh.nodes[v[1]], mesh.nodes[v[2]], mesh.nodes[opposite]) > 0) {
+        // The opposite vertex lies on the normal's side: flip to point outward.
+        std::swap(v[1], v[2]);
+        if (per_face == 6) std::swap(v[3], v[5]);
+      }
+      faces.insert(faces.end(), v.begin(), v.begin() + per_face);
+    }
+  }
+  return mesh;
+}
+
+}  // namespace needlefem

@@ -1,0 +1,29 @@
+// The mesh stage as the rest of the solver sees it: the case's scene meshed (or the user's
+// .msh taken), read into a TetMesh and checked. Every command that needs a mesh calls this.
+#pragma once
+
+#include <filesystem>
+
+#include "mesh/scene_mesher.hpp"
+#include "model/mesh_quality.hpp"
+#include "model/tet_mesh.hpp"
+
+namespace needlefem {
+
+class Case;
+
+struct SceneModel {
+  TetMesh mesh;
+  SceneMeshInfo info;      // CAD facts (zero for a user-supplied mesh)
+  MeshQuality quality;
+  std::filesystem::path msh_file;
+  bool user_mesh = false;
+};
+
+// Meshes the scene into out_dir/mesh.msh (or reads scene.mesh_file). Throws CaseError for bad
+// input and std::runtime_error for meshing failures; inverted elements are reported in
+// `quality`, and require_valid_elements() turns them into an error.
+SceneModel load_scene_model(const Case& c, const std::filesystem::path& out_dir);
+void require_valid_elements(const SceneModel& scene);
+
+}  // namespace needlefem
