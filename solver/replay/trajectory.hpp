@@ -18,8 +18,10 @@
 //   "format_version" = 1 (integer), "source_case" = the fully resolved case (TOML text) or
 //   description the trajectory was computed from ("" when none).
 //
-// Files written by other tools are accepted when they follow this layout; float32 datasets are
-// converted on reading. The reader checks the format tag, every dataset's presence and shape,
+// Producers (e.g. the insertion-force model of paper 000, Eq. 3.2) fill a Trajectory and call
+// write_trajectory; they may add further datasets (insertion depth, stage, ...), which replay
+// ignores. Files written by other tools are accepted when they follow this layout; float32
+// datasets are converted on reading. The reader checks the format tag, every dataset's presence and shape,
 // finite values, strictly increasing time and unit quaternions (|q| within 1e-3 of 1, then
 // renormalised), and reports the first failure in one line naming the file, dataset and reason.
 #pragma once
