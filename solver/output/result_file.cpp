@@ -78,6 +78,26 @@ Handle create_dataset(hid_t parent, const std::string& name, hid_t file_type,
                 H5Dclose, "create dataset " + name);
 }
 
+// One time of a [capacity, n(, c)] dataset as its own [n(, c)] dataset: an HDF5 virtual
+// dataset (no storage of its own) mapping onto slab `index` of `source` in this file.
+void create_time_view(hid_t parent, const std::string& name, const std::string& source,
+                      const std::vector<hsize_t>& source_dims, hsize_t index) {
+  Handle properties = creation_properties(H5P_DATASET_CREATE);
+  Handle source_space(H5Screate_simple(static_cast<int>(source_dims.size()), source_dims.data(), nullptr), H5Sclose,
+                      "create dataspace for " + source);
+  std::vector<hsize_t> start(source_dims.size(), 0), count = source_dims;
+  start[0] = index;
+  count[0] = 1;
+  check(H5Sselect_hyperslab(source_space.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr),
+        "select slab of " + source);
+  Handle view_space(H5Screate_simple(static_cast<int>(count.size()) - 1, count.data() + 1, nullptr), H5Sclose,
+                    "create dataspace for " + name);
+  check(H5Pset_virtual(properties.get(), view_space.get(), ".", source.c_str(), source_space.get()),
+        "map " + name + " onto " + source);
+  Handle(H5Dcreate2(parent, name.c_str(), H5T_IEEE_F64LE, view_space.get(), H5P_DEFAULT, properties.get(), H5P_DEFAULT),
+         H5Dclose, "create virtual dataset " + name);
+}
+
 template <class T>
 hid_t memory_type() {
   if constexpr (std::is_same_v<T, double>) return H5T_NATIVE_DOUBLE;
@@ -142,8 +162,8 @@ std::vector<double> stored_values(FieldType type, std::span<const double> values
 }
 
 std::string checked_field_name(const std::string& name) {
-  if (name.empty() || name.find_first_of("/<>&\"'.") != std::string::npos)
-    throw std::invalid_argument(fmt::format("result field name '{}': empty or contains one of / < > & \" ' .", name));
+  if (name.empty() || name.find_first_of("/<>&\"'.{}") != std::string::npos)
+    throw std::invalid_argument(fmt::format("result field name '{}': empty or contains one of / < > & \" ' . {{ }}", name));
   return name;
 }
 
@@ -270,7 +290,6 @@ ResultFile::ResultFile(const std::filesystem::path& h5_path, const TetMesh& mesh
 
   s.volume.h5_file_name = h5_path.filename().string();
   s.volume.coordinates = {"/mesh/coordinates_mm", s.node_count, 3, false, false};
-  s.volume.capacity = s.capacity;
   XdmfTopology tetrahedra;
   tetrahedra.name = "mesh";
   tetrahedra.topology_type = per_tet == 10 ? "Tetrahedron_10" : "Tetrahedron";
@@ -281,7 +300,6 @@ ResultFile::ResultFile(const std::filesystem::path& h5_path, const TetMesh& mesh
 
   s.surfaces.h5_file_name = s.volume.h5_file_name;
   s.surfaces.coordinates = s.volume.coordinates;
-  s.surfaces.capacity = s.capacity;
   if (!mesh.surface_faces.empty()) {
     Handle surfaces_group = create_group(mesh_group.get(), "surfaces");
     const int per_face = mesh.nodes_per_face();
@@ -311,6 +329,9 @@ ResultFile::ResultFile(const std::filesystem::path& h5_path, const TetMesh& mesh
                          "number of completed output times; later entries of /series are unwritten");
     Handle node_group = create_group(series_group.get(), "node");
     Handle cell_group = create_group(series_group.get(), "cell");
+    Handle steps_group = create_group(series_group.get(), "steps");
+    std::vector<Handle> step_groups;
+    for (std::size_t i = 0; i < s.capacity; ++i) step_groups.push_back(create_group(steps_group.get(), std::to_string(i)));
     for (const FieldSpec& spec : time_series) {
       if (!s.field_names.insert(checked_field_name(spec.name)).second)
         throw std::invalid_argument(fmt::format("result field '{}' declared twice", spec.name));
@@ -321,7 +342,9 @@ ResultFile::ResultFile(const std::filesystem::path& h5_path, const TetMesh& mesh
                                       H5T_IEEE_F64LE, dims, true);
       write_text_attribute(dataset.get(), "unit", spec.unit);
       write_text_attribute(dataset.get(), "type", type_name(spec.type));
-      s.add_attribute(spec, fmt::format("/series/{}/{}", at_nodes ? "node" : "cell", spec.name), true);
+      const std::string source = fmt::format("/series/{}/{}", at_nodes ? "node" : "cell", spec.name);
+      for (std::size_t i = 0; i < s.capacity; ++i) create_time_view(step_groups[i].get(), spec.name, source, dims, i);
+      s.add_attribute(spec, "/series/steps/{}/" + spec.name, true);
       s.series_datasets.push_back(std::move(dataset));
     }
     s.series = std::move(time_series);

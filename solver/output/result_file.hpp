@@ -13,6 +13,8 @@
 //   /series/time               [capacity]   output times in seconds
 //   /series/time_count         [1]          number of COMPLETED output times
 //   /series/{node,cell}/<f>    [capacity, n] or [capacity, n, components]
+//   /series/steps/<i>/<f>      [n] or [n, components]: time i of field f, a virtual
+//                              dataset onto /series/*/<f> (what the XDMF references)
 // Every field dataset carries attributes "unit" and "type".
 //
 // Tensors are written with all 9 components, row-major (xx xy xz yx yy yz zx zy zz),

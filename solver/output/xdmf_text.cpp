@@ -10,9 +10,8 @@
 namespace needlefem::output {
 namespace {
 
-std::string dimensions(const XdmfDataset& data, std::size_t leading) {
-  std::string text = leading > 0 ? fmt::format("{} {}", leading, data.entities)
-                                 : fmt::format("{}", data.entities);
+std::string dimensions(const XdmfDataset& data) {
+  std::string text = fmt::format("{}", data.entities);
   if (data.components > 1) text += fmt::format(" {}", data.components);
   return text;
 }
@@ -21,29 +20,11 @@ std::string number_type(const XdmfDataset& data) {
   return data.integer ? R"(NumberType="Int" Precision="4")" : R"(NumberType="Float" Precision="8")";
 }
 
-// A whole dataset, or for a time series the slab [time_index, :, :] of it.
 std::string data_item(const XdmfDocument& document, const XdmfDataset& data,
                       std::size_t time_index, const std::string& indent) {
-  std::string heavy = fmt::format(R"({}:{})", document.h5_file_name, data.path);
-  if (!data.per_time) {
-    return fmt::format("{}<DataItem Dimensions=\"{}\" {} Format=\"HDF\">{}</DataItem>\n", indent,
-                       dimensions(data, 0), number_type(data), heavy);
-  }
-  const int rank = data.components > 1 ? 3 : 2;
-  std::string start = fmt::format("{} 0", time_index), stride = "1 1",
-              count = fmt::format("1 {}", data.entities);
-  if (rank == 3) {
-    start += " 0";
-    stride += " 1";
-    count += fmt::format(" {}", data.components);
-  }
-  return fmt::format(
-      "{0}<DataItem ItemType=\"HyperSlab\" Dimensions=\"{1}\" Type=\"HyperSlab\">\n"
-      "{0}  <DataItem Dimensions=\"3 {2}\" Format=\"XML\">{3} {4} {5}</DataItem>\n"
-      "{0}  <DataItem Dimensions=\"{6}\" {7} Format=\"HDF\">{8}</DataItem>\n"
-      "{0}</DataItem>\n",
-      indent, count, rank, start, stride, count, dimensions(data, document.capacity),
-      number_type(data), heavy);
+  const std::string path = data.per_time ? fmt::format(fmt::runtime(data.path), time_index) : data.path;
+  return fmt::format("{}<DataItem Dimensions=\"{}\" {} Format=\"HDF\">{}:{}</DataItem>\n", indent,
+                     dimensions(data), number_type(data), document.h5_file_name, path);
 }
 
 std::string attribute_type(int components) {

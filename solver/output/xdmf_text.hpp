@@ -1,7 +1,8 @@
 // XDMF 3 text for the datasets of a ResultFile (see result_file.hpp for the HDF5 layout).
 // The XDMF holds no data, only references "file.h5:/dataset" (relative to the XDMF's
-// folder) and, for time-series fields, HyperSlab selections of one time out of the
-// [capacity, entities, components] datasets.
+// folder). Time-series fields reference one dataset per time (HDF5 virtual datasets onto
+// the [capacity, ...] arrays): ParaView's Xdmf3 readers skip HyperSlab DataItems in
+// attributes ("Skipping unrecognized array type [None]", ParaView 5.11), so no hyperslabs.
 #pragma once
 
 #include <cstddef>
@@ -12,11 +13,13 @@
 namespace needlefem::output {
 
 struct XdmfDataset {
-  std::string path;                // HDF5 dataset path, e.g. "/static/node/temperature"
+  // HDF5 dataset path, e.g. "/static/node/temperature"; with per_time, a pattern whose
+  // "{}" is replaced by the time index, e.g. "/series/steps/{}/displacement".
+  std::string path;
   std::size_t entities = 0;        // nodes or cells
   int components = 1;              // 1 is written without a component dimension
   bool integer = false;            // 32-bit int, else 64-bit float
-  bool per_time = false;           // a [capacity, entities(, components)] time series
+  bool per_time = false;
 };
 
 struct XdmfAttribute {
@@ -36,14 +39,13 @@ struct XdmfTopology {
 struct XdmfDocument {
   std::string h5_file_name;        // referenced relative to the XDMF file
   XdmfDataset coordinates;         // [nodes, 3] float
-  std::size_t capacity = 0;        // time-series length in the HDF5 file
   // One grid per topology. With several grids each time step is a spatial collection.
   std::vector<XdmfTopology> grids;
 };
 
 // The XDMF text. With `times` empty, one static grid (or spatial collection) without the
 // time-series attributes; otherwise a temporal collection with one entry per listed time
-// (times[i] is stored at index i of the time-series datasets).
+// (times[i] is the time of index i of the time-series datasets).
 std::string xdmf_text(const XdmfDocument& document, const std::vector<double>& times);
 
 // Writes `text` to a temporary file next to `path`, then renames it over `path`, so a

@@ -62,6 +62,7 @@ std::string read_text(const std::filesystem::path& path) {
     for (std::size_t f = 0; f < kSeries.size(); ++f)
       arrays.push_back(field_values(f, step, kSeries[f].centre == FieldCentre::node ? mesh.nodes.size() : mesh.tet_count()));
     file.append_time(time_of(step), {arrays.begin(), arrays.end()});
+    std::this_thread::sleep_for(std::chrono::microseconds(500));  // keeps the run longer than the kills
     if (step == 0) {  // whole or absent, whenever the kill comes
       const std::filesystem::path partial = snapshot.string() + ".partial";
       std::ofstream(partial, std::ios::binary) << read_text(h5);
@@ -76,17 +77,16 @@ struct KillResult {
   long long time_count = 0;
 };
 
-KillResult check_killed_file(const std::filesystem::path& h5, const std::filesystem::path& snapshot,
-                             const TetMesh& mesh) {
-  KillResult result;
+void check_killed_file(const std::filesystem::path& h5, const std::filesystem::path& snapshot, const TetMesh& mesh,
+                       KillResult& result) {
   const std::string xdmf = read_text(std::filesystem::path(h5).replace_extension(".xdmf"));
   EXPECT_NE(xdmf.find("</Xdmf>"), std::string::npos) << "XDMF incomplete";
   std::vector<double> times;
   const std::regex time_pattern(R"(<Time Value="([^"]+)\"/>)");
   for (auto it = std::sregex_iterator(xdmf.begin(), xdmf.end(), time_pattern); it != std::sregex_iterator(); ++it)
     times.push_back(std::stod((*it)[1]));
-  // The XDMF's slabs must select index i for the i-th time (and nothing beyond).
-  const std::regex slab_pattern(R"(Format="XML">(\d+) 0)");
+  // The i-th time's fields must reference step i (and nothing beyond).
+  const std::regex slab_pattern(R"(:/series/steps/(\d+)/)");
   std::size_t slab = 0;
   for (auto it = std::sregex_iterator(xdmf.begin(), xdmf.end(), slab_pattern); it != std::sregex_iterator(); ++it, ++slab)
     EXPECT_EQ(std::stoul((*it)[1]), slab / kSeries.size());
@@ -98,6 +98,7 @@ KillResult check_killed_file(const std::filesystem::path& h5, const std::filesys
   EXPECT_GE(result.time_count, static_cast<long long>(times.size()));
   EXPECT_LE(result.time_count, static_cast<long long>(times.size()) + 1);
   const std::vector<double> stored_times = file.read<double>("/series/time");
+  std::size_t values_checked = 0, wrong_values = 0;
   for (std::size_t i = 0; i < times.size(); ++i) {
     EXPECT_EQ(times[i], time_of(static_cast<long>(i)));
     EXPECT_EQ(stored_times[i], times[i]);
@@ -107,17 +108,22 @@ KillResult check_killed_file(const std::filesystem::path& h5, const std::filesys
       const std::vector<double> stored = file.read<double>(path, static_cast<long>(i));
       const std::size_t entities = at_nodes ? mesh.nodes.size() : mesh.tet_count();
       const int components = stored_components(kSeries[f].type);
-      ASSERT_EQ(stored.size(), entities * components);
+      if (stored.size() != entities * components) {
+        ADD_FAILURE() << path << ": " << stored.size() << " values at time " << i;
+        continue;
+      }
       // Symmetric tensors are stored in full; component k of the 9 comes from input index:
       constexpr int kVoigtOfFull[9] = {0, 3, 5, 3, 1, 4, 5, 4, 2};
       for (std::size_t e = 0; e < entities; ++e)
         for (int k = 0; k < components; ++k) {
           const int input_k = kSeries[f].type == FieldType::symmetric_tensor ? kVoigtOfFull[k] : k;
-          ASSERT_EQ(stored[e * components + k], value(f, static_cast<long>(i), e, input_k))
-              << path << " time " << i << " entity " << e;
+          ++values_checked;
+          wrong_values += stored[e * components + k] != value(f, static_cast<long>(i), e, input_k);
         }
     }
   }
+  EXPECT_EQ(wrong_values, 0u) << "of " << values_checked << " values at the listed times";
+  EXPECT_GT(values_checked, 0u);
 
   // Metadata never changed after the first output time: every byte outside the raw data of
   // the time-series datasets equals the snapshot the writer took then.
@@ -137,28 +143,34 @@ KillResult check_killed_file(const std::filesystem::path& h5, const std::filesys
     }
   EXPECT_EQ(changed, 0u) << "of " << metadata_bytes << " metadata bytes";
   EXPECT_GT(metadata_bytes, 1000u);
-  return result;
+  std::printf("  checked %zu values, %zu metadata bytes unchanged of %zu\n", values_checked, metadata_bytes - changed,
+              metadata_bytes);
 }
 
 TEST(ResultFileCrash, SigkilledWriterLeavesEveryListedTimeReadable) {
   const TetMesh mesh = testing::kuhn_cube(0.001, true);
   const std::filesystem::path h5 = std::filesystem::current_path() / "killed_writer.h5";
   const std::filesystem::path snapshot = std::filesystem::current_path() / "killed_writer.snapshot";
-  const long capacity = 20000;
+  const long capacity = 2000;
   // Kill moments spread over the run, so that the kill lands in field writes, flushes
   // and XDMF rewrites alike.
-  for (int delay_ms : {70, 130, 210, 290, 380, 470, 560}) {
+  for (int delay_ms : {0, 7, 40, 130, 210, 290, 380}) {
     std::filesystem::remove(snapshot);
     const pid_t child = fork();
     ASSERT_GE(child, 0);
     if (child == 0) write_until_killed(h5, snapshot, mesh, capacity);
+    // The delay counts from the first output time (file setup time varies with the machine).
+    const auto start = std::chrono::steady_clock::now();
+    while (!std::filesystem::exists(snapshot) && std::chrono::steady_clock::now() - start < std::chrono::seconds(20))
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
     std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms));
     ASSERT_EQ(kill(child, SIGKILL), 0);
     int status = 0;
     ASSERT_EQ(waitpid(child, &status, 0), child);
     ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL) << "writer ended before the kill";
-    ASSERT_TRUE(std::filesystem::exists(snapshot)) << "killed before the first output time; lengthen the delay";
-    const KillResult result = check_killed_file(h5, snapshot, mesh);
+    ASSERT_TRUE(std::filesystem::exists(snapshot)) << "no first output time within 20 s";
+    KillResult result;
+    check_killed_file(h5, snapshot, mesh, result);
     std::printf("killed after %d ms: XDMF lists %zu times, time_count %lld\n", delay_ms, result.xdmf_times,
                 result.time_count);
     EXPECT_GE(result.xdmf_times, 1u);
