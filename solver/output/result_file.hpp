@@ -30,7 +30,9 @@
 // ordinary reader (ParaView, h5py without swmr=True) then refuses the file until `h5clear`.
 // Design used instead: all HDF5 metadata is written once. Time-series datasets are
 // contiguous, sized for `output_capacity` times and allocated when created (sparse on disk:
-// fill values are never written), and the file is flushed before the first output time.
+// fill values are never written), the per-time virtual datasets the XDMF references are
+// created for every time up front (~0.8 kB of metadata per field and time, measured), and
+// the file is flushed before the first output time.
 // An output time then only writes raw bytes into space that already exists (sieve buffer
 // off, so writes reach the OS at once): fields, then /series/time[i], then time_count. Only
 // after that is the XDMF rewritten to a temporary file and renamed over the old one
