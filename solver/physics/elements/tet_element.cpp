@@ -1,0 +1,292 @@
+// Equations and sources: tet_element.hpp.
+#include "physics/elements/tet_element.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace needlefem::elements {
+
+namespace {
+
+using material::Mat3d;
+
+constexpr std::array<int, kVoigt> kVoigtRow{0, 1, 2, 1, 0, 0};
+constexpr std::array<int, kVoigt> kVoigtColumn{0, 1, 2, 2, 2, 1};
+
+std::array<double, kVoigt> to_voigt(const Mat3d& s) {
+  std::array<double, kVoigt> v{};
+  for (int m = 0; m < kVoigt; ++m) v[m] = s(kVoigtRow[m], kVoigtColumn[m]);
+  return v;
+}
+
+Mat3d from_voigt(const double* v) {
+  Mat3d s;
+  for (int m = 0; m < kVoigt; ++m) {
+    s(kVoigtRow[m], kVoigtColumn[m]) = v[m];
+    s(kVoigtColumn[m], kVoigtRow[m]) = v[m];
+  }
+  return s;
+}
+
+// D(m, n) = ∂S_m/∂E_n with engineering shear columns: the Tensor4 of a symmetric-direction
+// jacobian already holds ∂S_ij/∂γ_kl in its (k, l) slot for k != l (direction E_kl = E_lk = 1/2).
+std::array<double, kVoigt * kVoigt> to_voigt(const material::Tensor4& d) {
+  std::array<double, kVoigt * kVoigt> v{};
+  for (int m = 0; m < kVoigt; ++m)
+    for (int n = 0; n < kVoigt; ++n) v[m * kVoigt + n] = d(kVoigtRow[m], kVoigtColumn[m], kVoigtRow[n], kVoigtColumn[n]);
+  return v;
+}
+
+Mat3d to_mat3(const std::array<double, 9>& a) {
+  Mat3d m;
+  m.a = a;
+  return m;
+}
+
+}  // namespace
+
+const std::vector<QuadraturePoint>& element_quadrature(int nodes_per_tet) {
+  // Keast's 4-point rule: points at (a, b, b) and permutations, a = (5 + 3√5)/20, b = (5 - √5)/20.
+  static const std::vector<QuadraturePoint> four_point = [] {
+    const double a = (5.0 + 3.0 * std::sqrt(5.0)) / 20.0, b = (5.0 - std::sqrt(5.0)) / 20.0;
+    return std::vector<QuadraturePoint>{
+        {{b, b, b}, 1.0 / 24.0}, {{a, b, b}, 1.0 / 24.0}, {{b, a, b}, 1.0 / 24.0}, {{b, b, a}, 1.0 / 24.0}};
+  }();
+  static const std::vector<QuadraturePoint> centroid{{{0.25, 0.25, 0.25}, 1.0 / 6.0}};
+  if (nodes_per_tet == 10) return four_point;
+  if (nodes_per_tet == 4) return centroid;
+  throw std::invalid_argument("element_quadrature: tetrahedra have 4 or 10 nodes");
+}
+
+ElementGeometry element_geometry(int nodes_per_tet, const double* coordinates) {
+  const auto& rule = element_quadrature(nodes_per_tet);
+  ElementGeometry g;
+  g.nodes = nodes_per_tet;
+  g.points = static_cast<int>(rule.size());
+  g.gradient.resize(static_cast<std::size_t>(g.points) * g.nodes * 3);
+  g.weight.resize(g.points);
+  std::vector<double> reference_gradient(static_cast<std::size_t>(g.nodes) * 3);
+  for (int q = 0; q < g.points; ++q) {
+    tet_shape_gradients(g.nodes, rule[q].xi, reference_gradient.data());
+    Mat3d jacobian;  // ∂X_i/∂ξ_j
+    for (int a = 0; a < g.nodes; ++a)
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) jacobian(i, j) += coordinates[3 * a + i] * reference_gradient[3 * a + j];
+    const double det_jacobian = material::det(jacobian);
+    if (!(det_jacobian > 0.0)) throw std::runtime_error("element_geometry: inverted or degenerate reference element");
+    const Mat3d inverse_jacobian = material::inverse(jacobian);  // ∂ξ_j/∂X_J
+    double* G = g.gradient.data() + static_cast<std::size_t>(q) * g.nodes * 3;
+    for (int a = 0; a < g.nodes; ++a)
+      for (int J = 0; J < 3; ++J) {
+        double s = 0.0;
+        for (int j = 0; j < 3; ++j) s += reference_gradient[3 * a + j] * inverse_jacobian(j, J);
+        G[3 * a + J] = s;
+      }
+    g.weight[q] = rule[q].weight * det_jacobian;
+    g.volume += g.weight[q];
+  }
+  return g;
+}
+
+void green_strain_operator(const std::array<double, 9>& F, const double* gradient, int nodes, double* B) {
+  const int columns = 3 * nodes;
+  for (int a = 0; a < nodes; ++a) {
+    const double* G = gradient + 3 * a;
+    for (int i = 0; i < 3; ++i) {
+      const double* f = F.data() + 3 * i;  // row i of F: F_iI
+      const int c = 3 * a + i;
+      B[0 * columns + c] = f[0] * G[0];
+      B[1 * columns + c] = f[1] * G[1];
+      B[2 * columns + c] = f[2] * G[2];
+      B[3 * columns + c] = f[1] * G[2] + f[2] * G[1];
+      B[4 * columns + c] = f[0] * G[2] + f[2] * G[0];
+      B[5 * columns + c] = f[0] * G[1] + f[1] * G[0];
+    }
+  }
+}
+
+TetElementKernel::TetElementKernel(const material::Material& material, Formulation formulation)
+    : material_(material), formulation_(formulation) {
+  if (tissue()) {
+    prony_ = tissue()->isochoric.terms;
+  } else if (formulation == Formulation::mean_dilatation) {
+    throw std::invalid_argument("the mean-dilatation element needs a law with an isochoric/volumetric split; '" +
+                                material.name() + "' has none (use the displacement formulation)");
+  }
+}
+
+double TetElementKernel::condensed_tangent_scale(double cj) const {
+  double scale = 1.0;
+  if (std::isinf(cj)) return scale;
+  for (const auto& term : prony_) scale -= term.g / (1.0 + cj * term.tau_s);
+  return scale;
+}
+
+ElementResult TetElementKernel::evaluate(const ElementGeometry& geometry, const double* displacement,
+                                         const double* viscous, bool with_tangent,
+                                         double material_tangent_scale) const {
+  const int n = geometry.nodes, dofs = 3 * n, points = geometry.points;
+  ElementResult result;
+  result.points.resize(points);
+
+  // Pass 1: F and J at every point (the mixed form needs v_e before any stress).
+  double current_volume = 0.0;
+  for (int q = 0; q < points; ++q) {
+    const double* G = geometry.gradient_at(q);
+    Mat3d F = Mat3d::identity();
+    for (int a = 0; a < n; ++a)
+      for (int i = 0; i < 3; ++i)
+        for (int J = 0; J < 3; ++J) F(i, J) += displacement[3 * a + i] * G[3 * a + J];
+    const double det_f = material::det(F);
+    if (!(det_f > 0.0)) {
+      result.inverted = true;
+      return result;
+    }
+    result.points[q].deformation_gradient = F.a;
+    current_volume += geometry.weight[q] * det_f;
+  }
+
+  result.residual.assign(dofs, 0.0);
+  if (with_tangent) result.stiffness.assign(static_cast<std::size_t>(dofs) * dofs, 0.0);
+  std::vector<double>& r = result.residual;
+  std::vector<double>& K = result.stiffness;
+  const bool mixed = formulation_ == Formulation::mean_dilatation;
+  std::vector<double> B(static_cast<std::size_t>(kVoigt) * dofs), DB(static_cast<std::size_t>(kVoigt) * dofs);
+  std::vector<double> spatial_gradient(dofs);              // n_ai = ∂N_a/∂x_i
+  std::vector<double> volume_gradient(mixed ? dofs : 0);   // ∂v_e/∂u
+  std::vector<double> volume_hessian(mixed && with_tangent ? K.size() : 0);  // ∂²v_e/∂u²
+  double pressure_volume_integral = 0.0;
+
+  // Adds c (n_ai n_bk - n_ak n_bi), the J-normalised second derivative of J, to `target`.
+  auto add_jacobian_hessian = [&](std::vector<double>& target, double c) {
+    for (int a = 0; a < n; ++a)
+      for (int i = 0; i < 3; ++i)
+        for (int b = 0; b < n; ++b)
+          for (int k = 0; k < 3; ++k)
+            target[static_cast<std::size_t>(3 * a + i) * dofs + 3 * b + k] +=
+                c * (spatial_gradient[3 * a + i] * spatial_gradient[3 * b + k] -
+                     spatial_gradient[3 * a + k] * spatial_gradient[3 * b + i]);
+  };
+
+  for (int q = 0; q < points; ++q) {
+    const double w = geometry.weight[q];
+    const double* G = geometry.gradient_at(q);
+    PointResponse& point = result.points[q];
+    const Mat3d F = to_mat3(point.deformation_gradient);
+    const double det_f = material::det(F);
+
+    if (!tissue()) {
+      // Law without the split: P and ∂P/∂F straight from the material.
+      const material::ViscousState no_state = material_.initial_state();
+      const Mat3d P = material_.update(F, no_state, 0.0).first_pk;
+      result.energy += w * material_.instantaneous_energy(F);
+      for (int a = 0; a < n; ++a)
+        for (int i = 0; i < 3; ++i)
+          for (int J = 0; J < 3; ++J) r[3 * a + i] += w * P(i, J) * G[3 * a + J];
+      if (with_tangent) {
+        const material::Tensor4 A = material_.tangent(F, no_state, 0.0);
+        for (int a = 0; a < n; ++a)
+          for (int i = 0; i < 3; ++i)
+            for (int b = 0; b < n; ++b)
+              for (int k = 0; k < 3; ++k) {
+                double s = 0.0;
+                for (int J = 0; J < 3; ++J)
+                  for (int L = 0; L < 3; ++L) s += G[3 * a + J] * A(i, J, k, L) * G[3 * b + L];
+                K[static_cast<std::size_t>(3 * a + i) * dofs + 3 * b + k] += w * s;
+              }
+      }
+      continue;
+    }
+
+    // Isochoric part: S_iso = S⁰_iso - Σ Q_i.
+    const auto& isochoric = tissue()->isochoric;
+    const Mat3d C = material::right_cauchy_green(F);
+    const Mat3d elastic_stress = isochoric.elastic.stress(C);
+    point.elastic_stress = to_voigt(elastic_stress);
+    Mat3d stress = elastic_stress;
+    if (viscous)
+      for (int i = 0; i < prony_terms(); ++i)
+        stress -= from_voigt(viscous + (static_cast<std::size_t>(q) * prony_terms() + i) * kVoigt);
+    const std::array<double, kVoigt> stress_v = to_voigt(stress);
+    result.energy += w * isochoric.elastic.energy(C);
+
+    green_strain_operator(point.deformation_gradient, G, n, B.data());
+    for (int m = 0; m < kVoigt; ++m)
+      for (int c = 0; c < dofs; ++c) r[c] += w * B[static_cast<std::size_t>(m) * dofs + c] * stress_v[m];
+
+    if (with_tangent) {
+      point.elastic_tangent = to_voigt(isochoric.elastic_tangent(C));
+      const double scale = w * material_tangent_scale;
+      for (int m = 0; m < kVoigt; ++m)
+        for (int c = 0; c < dofs; ++c) {
+          double s = 0.0;
+          for (int l = 0; l < kVoigt; ++l) s += point.elastic_tangent[m * kVoigt + l] * B[static_cast<std::size_t>(l) * dofs + c];
+          DB[static_cast<std::size_t>(m) * dofs + c] = s;
+        }
+      for (int row = 0; row < dofs; ++row)
+        for (int col = 0; col < dofs; ++col) {
+          double s = 0.0;
+          for (int m = 0; m < kVoigt; ++m)
+            s += B[static_cast<std::size_t>(m) * dofs + row] * DB[static_cast<std::size_t>(m) * dofs + col];
+          K[static_cast<std::size_t>(row) * dofs + col] += scale * s;
+        }
+      // Geometric stiffness δ_ik G_a·S G_b.
+      for (int a = 0; a < n; ++a)
+        for (int b = 0; b < n; ++b) {
+          double s = 0.0;
+          for (int I = 0; I < 3; ++I)
+            for (int J = 0; J < 3; ++J) s += G[3 * a + I] * stress(I, J) * G[3 * b + J];
+          for (int i = 0; i < 3; ++i) K[static_cast<std::size_t>(3 * a + i) * dofs + 3 * b + i] += w * s;
+        }
+    }
+
+    // Volumetric part.
+    const Mat3d f_inverse = material::inverse(F);
+    for (int a = 0; a < n; ++a)
+      for (int i = 0; i < 3; ++i) {
+        double s = 0.0;
+        for (int J = 0; J < 3; ++J) s += G[3 * a + J] * f_inverse(J, i);
+        spatial_gradient[3 * a + i] = s;
+      }
+    const auto& volumetric = tissue()->volumetric;
+    if (mixed) {
+      for (int c = 0; c < dofs; ++c) volume_gradient[c] += w * det_f * spatial_gradient[c];
+      if (with_tangent) add_jacobian_hessian(volume_hessian, w * det_f);
+    } else {
+      const double p = volumetric.pressure(det_f), dp = volumetric.pressure_derivative();
+      result.energy += w * volumetric.energy(det_f);
+      pressure_volume_integral += w * p;
+      for (int c = 0; c < dofs; ++c) r[c] += w * p * det_f * spatial_gradient[c];
+      if (with_tangent) {
+        for (int row = 0; row < dofs; ++row)
+          for (int col = 0; col < dofs; ++col)
+            K[static_cast<std::size_t>(row) * dofs + col] +=
+                w * dp * det_f * det_f * spatial_gradient[row] * spatial_gradient[col];
+        add_jacobian_hessian(K, w * p * det_f);
+      }
+    }
+  }
+
+  if (!tissue()) return result;
+  const auto& volumetric = tissue()->volumetric;
+  if (mixed) {
+    const double theta = current_volume / geometry.volume;
+    const double p = volumetric.pressure(theta);
+    result.pressure = p;
+    result.energy += geometry.volume * volumetric.energy(theta);
+    for (int c = 0; c < dofs; ++c) r[c] += p * volume_gradient[c];
+    if (with_tangent) {
+      const double stiffness_per_volume = volumetric.pressure_derivative() / geometry.volume;
+      for (int row = 0; row < dofs; ++row)
+        for (int col = 0; col < dofs; ++col)
+          K[static_cast<std::size_t>(row) * dofs + col] +=
+              p * volume_hessian[static_cast<std::size_t>(row) * dofs + col] +
+              stiffness_per_volume * volume_gradient[row] * volume_gradient[col];
+    }
+  } else {
+    result.pressure = pressure_volume_integral / geometry.volume;
+  }
+  return result;
+}
+
+}  // namespace needlefem::elements

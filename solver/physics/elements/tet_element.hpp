@@ -1,0 +1,121 @@
+// Total-Lagrangian tetrahedral elements (TET4, TET10) for the decoupled hyper-viscoelastic
+// tissue of physics/material, in two formulations.
+//
+// Notation: X reference, F = I + Σ_a u_a ⊗ G_a with G_a = ∂N_a/∂X, J = det F, C = FᵀF,
+// E = (C - I)/2. Voigt order (11, 22, 33, 23, 13, 12) with ENGINEERING shear for strains, so
+// S:δE = S_v·δE_v. B_q (6 x 3n) maps nodal displacement variations to δE_v at point q:
+//   δE_v(a,i) = [F_i1 G_a1, F_i2 G_a2, F_i3 G_a3, F_i2 G_a3 + F_i3 G_a2, F_i1 G_a3 + F_i3 G_a1,
+//                F_i1 G_a2 + F_i2 G_a1].
+//
+// Stress (physics/material/polynomial.hpp, viscoelastic.hpp; Holzapfel 2000 §6.4, §6.10):
+//   S = S⁰_iso(C) - Σ_i Q_i + S_vol,   the Q_i (Prony internal variables) are element inputs.
+//
+// DISPLACEMENT formulation (TET4/TET10, locks as K/mu grows):
+//   Π_e = ∫ W_iso(C) dV + ∫ U(J) dV,  U = K/2 (J - 1)².
+// MEAN-DILATATION formulation (Simo, Taylor & Pister 1985, CMAME 51:177; Bonet & Wood,
+//   Nonlinear Continuum Mechanics for FEA, 2nd ed. §8.6): three fields u, element-constant
+//   dilatation θ and pressure p; the Hu-Washizu stationarity conditions in θ and p give
+//   θ = v_e/V_e (current over reference element volume) and p = U'(θ), condensed exactly at
+//   element level. Equivalently F̄ = (θ/J)^(1/3) F in the energy, and because W_iso depends only
+//   on C̄ = J^(-2/3) C, which F̄ and F share,
+//     Π_e = ∫ W_iso(C) dV + V_e U(v_e/V_e),    v_e = ∫ J dV.
+//   This is the tetrahedral analogue of Abaqus C3D10H (hybrid, constant pressure) and is free of
+//   volumetric locking on TET10 up to incompressibility (one constraint per element against 30
+//   displacement dofs); on TET4 it is the displacement element (1 quadrature point).
+//
+// Residual (r_a = ∂Π_e/∂u_a for the elastic part; the Q_i enter through S):
+//   r = Σ_q w_q B_qᵀ S_iso,v(q) + volumetric part,
+//   volumetric part  displacement: Σ_q w_q U'(J_q) ∂J_q/∂u,   mixed: U'(θ) ∂v_e/∂u,
+//   with ∂J/∂u_ai = J n_ai, n_ai = G_aJ F⁻¹_Ji (= ∂N_a/∂x_i), v_e = Σ_q w_q J_q.
+// Tangent (consistent, at fixed Q):
+//   K = Σ_q w_q [ s B_qᵀ D⁰ B_q + δ_ik G_a·S_iso G_b ] + volumetric part,
+//   D⁰ = ∂S⁰_iso/∂E (6 x 6, exact via dual numbers), s = `material_tangent_scale` (1 for ∂r/∂u;
+//   1 - Σ_i g_i/(1 + c_j τ_i) after the Prony internal variables have been condensed out of an
+//   IDA Newton matrix, see mechanics/mechanics_system.hpp),
+//   ∂²J/∂u_ai∂u_bk = J (n_ai n_bk - n_ak n_bi),
+//   displacement: Σ_q w_q [U''(J) J² n n + U'(J) J (n_ai n_bk - n_ak n_bi)],
+//   mixed: U'(θ) ∂²v_e/∂u² + U''(θ)/V_e (∂v_e/∂u)(∂v_e/∂u)ᵀ.
+//
+// Laws without the isochoric/volumetric split (co-rotational linear) use the displacement
+// formulation with P(F) and ∂P/∂F from the material; they carry no internal variables.
+//
+// Quadrature: TET10 the 4-point degree-2 rule (Keast; Abaqus' C3D10/C3D10H rule), exact for the
+// stiffness of straight-sided elements and enough for optimal convergence of quadratic elements;
+// TET4 the centroid. Fewer points than tet_geometry's degree-5 rule keep the viscous state small.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "model/tet_geometry.hpp"
+#include "physics/material/material.hpp"
+
+namespace needlefem::elements {
+
+enum class Formulation { displacement, mean_dilatation };
+
+constexpr int kVoigt = 6;  // components of a symmetric tensor in Voigt form
+
+const std::vector<QuadraturePoint>& element_quadrature(int nodes_per_tet);
+
+// Reference-configuration data of one element.
+struct ElementGeometry {
+  int nodes = 0;                // 4 or 10
+  int points = 0;               // quadrature points
+  std::vector<double> gradient; // points x nodes x 3: G_a = ∂N_a/∂X at each point
+  std::vector<double> weight;   // points: quadrature weight times det(∂X/∂ξ)
+  double volume = 0.0;          // V_e
+  const double* gradient_at(int q) const { return gradient.data() + static_cast<std::size_t>(q) * nodes * 3; }
+};
+
+// From node coordinates (nodes x 3, metres). Throws std::runtime_error for a degenerate or
+// inverted reference element.
+ElementGeometry element_geometry(int nodes_per_tet, const double* coordinates);
+
+// What an evaluation reports at each quadrature point, for the viscous rate equations and the
+// condensation of their internal variables.
+struct PointResponse {
+  std::array<double, 9> deformation_gradient{};     // F, row-major
+  std::array<double, kVoigt> elastic_stress{};      // S⁰_iso, Voigt
+  std::array<double, kVoigt * kVoigt> elastic_tangent{};  // D⁰ = ∂S⁰_iso,v/∂E_v (with tangent)
+};
+
+struct ElementResult {
+  bool inverted = false;            // det F <= 0 at some point (or θ <= 0): nothing else is valid
+  std::vector<double> residual;     // 3n: internal force
+  std::vector<double> stiffness;    // 3n x 3n row-major (when requested)
+  std::vector<PointResponse> points;
+  double pressure = 0.0;            // mixed: U'(θ); displacement: volume average of U'(J)
+  double energy = 0.0;              // elastic energy of the element (instantaneous, Q not counted)
+};
+
+class TetElementKernel {
+ public:
+  // Throws std::invalid_argument for the mean-dilatation form with a law that has no
+  // isochoric/volumetric split.
+  TetElementKernel(const material::Material& material, Formulation formulation);
+
+  Formulation formulation() const { return formulation_; }
+  // Prony terms of the material (0 for elastic laws); internal variables per point = 6 x this.
+  int prony_terms() const { return static_cast<int>(prony_.size()); }
+  const std::vector<material::PronyTerm>& prony() const { return prony_; }
+  // 1 - Σ g_i/(1 + cj τ_i): the factor of D⁰ in the Newton matrix with Q condensed (cj = +inf: 1).
+  double condensed_tangent_scale(double cj) const;
+
+  // displacement: 3n values; viscous: points x terms x 6 Voigt Q values, or nullptr for Q = 0.
+  ElementResult evaluate(const ElementGeometry& geometry, const double* displacement, const double* viscous,
+                         bool with_tangent, double material_tangent_scale = 1.0) const;
+
+ private:
+  const material::PolynomialTissue* tissue() const {
+    return std::get_if<material::PolynomialTissue>(&material_.law());
+  }
+  material::Material material_;
+  Formulation formulation_;
+  std::vector<material::PronyTerm> prony_;
+};
+
+// B_q of the header comment (6 x 3n, row-major) at deformation gradient F and gradients G.
+void green_strain_operator(const std::array<double, 9>& F, const double* gradient, int nodes, double* B);
+
+}  // namespace needlefem::elements
