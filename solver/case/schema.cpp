@@ -167,6 +167,13 @@ std::vector<KeySpec> build_schema() {
               "METIS element partitions (MPI ranks); the mesh report compares their interface size "
               "with a naive split"),
       integer("mesh.seed", 1, 0, 1000000, "Seed of gmsh's random factor, fixed for deterministic meshes"),
+
+      // --- tissue elements (physics/elements) -------------------------------------------------
+      choice("element.formulation", "mixed", {"mixed", "displacement"},
+             "mixed: mean-dilatation displacement/pressure element (element-constant pressure and "
+             "dilatation condensed per element, like Abaqus C3D10H), free of volumetric locking; "
+             "displacement: displacement-only element, which locks as K/mu grows (for the locking "
+             "study). On 4-node tets both are the same element"),
   };
 }
 
