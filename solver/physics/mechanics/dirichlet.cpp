@@ -1,0 +1,108 @@
+// Equations: dirichlet.hpp.
+#include "physics/mechanics/dirichlet.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <string>
+
+#include "case/case.hpp"
+
+namespace needlefem::mechanics {
+
+namespace {
+
+constexpr double kMetresPerMm = 1e-3;
+
+// Collects conditions so that a dof constrained again takes the latest field.
+class ConditionBuilder {
+ public:
+  ConditionBuilder(const TetMesh& mesh, const DofMap& map) : mesh_(mesh), map_(map) {}
+
+  int add_field(DisplacementField field) {
+    conditions_.fields.push_back(std::move(field));
+    return static_cast<int>(conditions_.fields.size()) - 1;
+  }
+
+  void constrain_surface(const std::string& surface, const std::vector<int>& components, int field) {
+    const auto faces = mesh_.surface_faces.find(surface);
+    if (faces == mesh_.surface_faces.end()) throw std::runtime_error("the mesh has no surface '" + surface + "'");
+    for (int node : faces->second) {
+      if (map_.node_dof[node] < 0) continue;
+      for (int c : components) by_dof_[map_.dof(node, c)] = PrescribedDof{map_.dof(node, c), node, c, field};
+    }
+  }
+
+  DirichletConditions finish() {
+    for (const auto& [dof, prescribed] : by_dof_) conditions_.dofs.push_back(prescribed);
+    return std::move(conditions_);
+  }
+
+ private:
+  const TetMesh& mesh_;
+  const DofMap& map_;
+  DirichletConditions conditions_;
+  std::map<int, PrescribedDof> by_dof_;
+};
+
+const DisplacementField kZeroField = [](const Point3&, double) { return Point3{0.0, 0.0, 0.0}; };
+
+}  // namespace
+
+double ramp_then_hold(double t, double ramp_s) {
+  if (ramp_s <= 0.0) return t >= 0.0 ? 1.0 : 0.0;
+  return std::clamp(t / ramp_s, 0.0, 1.0);
+}
+
+DirichletConditions block_conditions(const Case& input, const TetMesh& mesh, const DofMap& map) {
+  const std::vector<double> gradient = input.reals("block.applied_gradient");
+  std::array<double, 9> displacement_gradient{};  // F - I
+  for (int n = 0; n < 9; ++n) displacement_gradient[n] = gradient[n] - (n % 4 == 0 ? 1.0 : 0.0);
+  const double ramp_s = input.real("loading.ramp_s");
+
+  ConditionBuilder builder(mesh, map);
+  const int zero = builder.add_field(kZeroField);
+  const int affine = builder.add_field([displacement_gradient, ramp_s](const Point3& X, double t) {
+    const double s = ramp_then_hold(t, ramp_s);
+    Point3 u{};
+    for (int i = 0; i < 3; ++i)
+      for (int J = 0; J < 3; ++J) u[i] += s * displacement_gradient[3 * i + J] * X[J];
+    return u;
+  });
+  const std::array<std::string, 6> faces{"x_min", "x_max", "y_min", "y_max", "z_min", "z_max"};
+  for (int f = 0; f < 6; ++f) {
+    const std::string condition = input.text("block." + faces[f]);
+    const int axis = f / 2;
+    if (condition == "fixed") builder.constrain_surface(faces[f], {0, 1, 2}, zero);
+    if (condition == "roller") builder.constrain_surface(faces[f], {axis}, zero);
+    if (condition == "normal-displacement") builder.constrain_surface(faces[f], {axis}, affine);
+    if (condition == "displacement") builder.constrain_surface(faces[f], {0, 1, 2}, affine);
+  }
+  return builder.finish();
+}
+
+DirichletConditions brain_tip_conditions(const Case& input, const TetMesh& mesh, const DofMap& map) {
+  const double speed = input.real("motion.insertion_speed_mm_per_s") * kMetresPerMm;
+  const double angular_speed = input.real("motion.rotation_speed_deg_per_s") * std::numbers::pi / 180.0;
+  const double duration = input.real("motion.duration_s");
+  ConditionBuilder builder(mesh, map);
+  builder.constrain_surface("fixed", {0, 1, 2}, builder.add_field(kZeroField));
+  builder.constrain_surface("cavity", {0, 1, 2},
+                            builder.add_field([speed, angular_speed, duration](const Point3& X, double t) {
+                              const double elapsed = std::clamp(t, 0.0, duration);
+                              const double angle = angular_speed * elapsed;
+                              const double c = std::cos(angle), s = std::sin(angle);
+                              return Point3{c * X[0] - s * X[1] - X[0], s * X[0] + c * X[1] - X[1],
+                                            speed * elapsed};
+                            }));
+  return builder.finish();
+}
+
+DirichletConditions scene_conditions(const Case& input, const TetMesh& mesh, const DofMap& map) {
+  if (input.text("scene.kind") == "block") return block_conditions(input, mesh, map);
+  return brain_tip_conditions(input, mesh, map);
+}
+
+}  // namespace needlefem::mechanics

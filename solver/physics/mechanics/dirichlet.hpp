@@ -1,0 +1,62 @@
+// Prescribed displacements (Dirichlet conditions) of the two mechanics scenes.
+//
+// Block scene (scene.kind = "block"), per face x_min .. z_max (key block.<face>):
+//   free                 no condition
+//   fixed                u = 0
+//   roller               u·n = 0 (n the face's axis)
+//   normal-displacement  u·n = ū·n
+//   displacement         u = ū
+// with the affine field ū(X, t) = s(t) (F - I) X, F = block.applied_gradient and the load factor
+// s(t) = min(t / loading.ramp_s, 1) (ramp, then hold). A dof constrained by several faces (an
+// edge or corner) takes the condition of the last face in the order x_min, x_max, y_min, y_max,
+// z_min, z_max; consistent conditions (all derived from ū) agree there anyway.
+//
+// Brain-tip scene (scene.kind = "brain-tip", paper 001): the five skull faces ("fixed") are
+// fixed; the entry face is free; the tissue nodes on the needle cavity ("cavity") follow the
+// rigid needle: with t' = min(t, motion.duration_s), insertion speed v and rotation speed ω
+// (motion.insertion_speed_mm_per_s, motion.rotation_speed_deg_per_s) about the needle axis
+// (the z axis through the centre of the entry face, pointing into the tissue),
+//   x(X, t) = R_z(ω t') X + v t' e_z,   u = x - X.
+// (Sliding and separation on the cavity come with contact; here the cavity is tied to the needle.)
+#pragma once
+
+#include <functional>
+#include <vector>
+
+#include "model/tet_mesh.hpp"
+#include "physics/mechanics/dof_map.hpp"
+
+namespace needlefem {
+class Case;
+}
+
+namespace needlefem::mechanics {
+
+// Prescribed displacement u(X, t), metres.
+using DisplacementField = std::function<Point3(const Point3& X, double t)>;
+
+struct PrescribedDof {
+  int dof = 0;
+  int node = 0;
+  int component = 0;
+  int field = 0;  // index into DirichletConditions::fields
+};
+
+struct DirichletConditions {
+  std::vector<DisplacementField> fields;
+  std::vector<PrescribedDof> dofs;  // each constrained dof once
+
+  double value(const TetMesh& mesh, const PrescribedDof& d, double t) const {
+    return fields[d.field](mesh.nodes[d.node], t)[d.component];
+  }
+};
+
+// Load factor of the block scene: linear ramp to 1 over ramp_s, then hold.
+double ramp_then_hold(double t, double ramp_s);
+
+DirichletConditions block_conditions(const Case& input, const TetMesh& mesh, const DofMap& map);
+DirichletConditions brain_tip_conditions(const Case& input, const TetMesh& mesh, const DofMap& map);
+// The conditions of the case's scene.kind.
+DirichletConditions scene_conditions(const Case& input, const TetMesh& mesh, const DofMap& map);
+
+}  // namespace needlefem::mechanics

@@ -1,0 +1,318 @@
+// Equations: mechanics_system.hpp.
+#include "physics/mechanics/mechanics_system.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "case/case.hpp"
+
+namespace needlefem::mechanics {
+
+namespace {
+
+void check(PetscErrorCode code, const char* what) {
+  if (code != 0) throw std::runtime_error(fmt::format("PETSc error {} in {}", static_cast<int>(code), what));
+}
+
+// Runs a DaeSystem callback body: no exception may reach the integrator's C callbacks.
+template <class Body>
+DaeStatus guarded(Body&& body) noexcept {
+  try {
+    return body();
+  } catch (...) {
+    return DaeStatus::fatal;
+  }
+}
+
+// Read-only / writable views of a PETSc vector's local array for one scope.
+class ReadArray {
+ public:
+  explicit ReadArray(Vec v) : v_(v) { check(VecGetArrayRead(v_, &data_), "VecGetArrayRead"); }
+  ~ReadArray() { VecRestoreArrayRead(v_, &data_); }
+  ReadArray(const ReadArray&) = delete;
+  ReadArray& operator=(const ReadArray&) = delete;
+  const double* data() const { return data_; }
+
+ private:
+  Vec v_;
+  const PetscScalar* data_ = nullptr;
+};
+
+class WriteArray {
+ public:
+  explicit WriteArray(Vec v) : v_(v) { check(VecGetArray(v_, &data_), "VecGetArray"); }
+  ~WriteArray() { VecRestoreArray(v_, &data_); }
+  WriteArray(const WriteArray&) = delete;
+  WriteArray& operator=(const WriteArray&) = delete;
+  double* data() const { return data_; }
+
+ private:
+  Vec v_;
+  PetscScalar* data_ = nullptr;
+};
+
+elements::Formulation formulation_from_case(const Case& input) {
+  return input.text("element.formulation") == "displacement" ? elements::Formulation::displacement
+                                                               : elements::Formulation::mean_dilatation;
+}
+
+}  // namespace
+
+MechanicsSystem::MechanicsSystem(const TetMesh& mesh, const material::Material& material,
+                                 elements::Formulation formulation, DirichletConditions conditions)
+    : mesh_(mesh), dofs_(tissue_dof_map(mesh)), conditions_(std::move(conditions)), kernel_(material, formulation) {
+  const int n = mesh.nodes_per_tet;
+  std::vector<double> coordinates(3 * n);
+  geometry_.reserve(dofs_.tissue_tets.size());
+  for (std::size_t e : dofs_.tissue_tets) {
+    for (int a = 0; a < n; ++a)
+      for (int c = 0; c < 3; ++c) coordinates[3 * a + c] = mesh.nodes[mesh.tet(e)[a]][c];
+    geometry_.push_back(elements::element_geometry(n, coordinates.data()));
+  }
+  const int points = static_cast<int>(elements::element_quadrature(n).size());
+  viscous_per_element_ = static_cast<PetscInt>(points) * kernel_.prony_terms() * elements::kVoigt;
+  prescribed_.assign(dofs_.dof_count, 0);
+  for (const auto& d : conditions_.dofs) prescribed_[d.dof] = 1;
+
+  // Block (node) sparsity: nodes sharing a tissue tet.
+  const PetscInt block_rows = dofs_.dof_count / 3;
+  std::vector<std::vector<PetscInt>> neighbours(block_rows);
+  for (std::size_t e : dofs_.tissue_tets)
+    for (int a = 0; a < n; ++a)
+      for (int b = 0; b < n; ++b)
+        neighbours[dofs_.node_dof[mesh.tet(e)[a]] / 3].push_back(dofs_.node_dof[mesh.tet(e)[b]] / 3);
+  std::vector<PetscInt> blocks_per_row(block_rows);
+  for (PetscInt row = 0; row < block_rows; ++row) {
+    auto& list = neighbours[row];
+    std::sort(list.begin(), list.end());
+    blocks_per_row[row] = std::unique(list.begin(), list.end()) - list.begin();
+  }
+  check(MatCreate(PETSC_COMM_SELF, &jacobian_), "MatCreate");
+  check(MatSetSizes(jacobian_, dofs_.dof_count, dofs_.dof_count, dofs_.dof_count, dofs_.dof_count), "MatSetSizes");
+  check(MatSetType(jacobian_, MATAIJ), "MatSetType");
+  check(MatSetBlockSize(jacobian_, 3), "MatSetBlockSize");
+  check(MatXAIJSetPreallocation(jacobian_, 3, blocks_per_row.data(), nullptr, nullptr, nullptr),
+        "MatXAIJSetPreallocation");
+  // Prescribed rows become identity rows without changing the pattern, so the symbolic
+  // factorisation is reused from one setup to the next.
+  check(MatSetOption(jacobian_, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE), "MatSetOption");
+
+  check(KSPCreate(PETSC_COMM_SELF, &ksp_), "KSPCreate");
+  check(KSPSetOptionsPrefix(ksp_, "tissue_"), "KSPSetOptionsPrefix");
+  check(KSPSetType(ksp_, KSPPREONLY), "KSPSetType");
+  PC pc = nullptr;
+  check(KSPGetPC(ksp_, &pc), "KSPGetPC");
+  check(PCSetType(pc, PCLU), "PCSetType");
+  check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
+  check(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
+  check(VecCreateSeq(PETSC_COMM_SELF, dofs_.dof_count, &rhs_), "VecCreateSeq");
+  check(VecDuplicate(rhs_, &solution_), "VecDuplicate");
+}
+
+MechanicsSystem::~MechanicsSystem() {
+  VecDestroy(&solution_);
+  VecDestroy(&rhs_);
+  KSPDestroy(&ksp_);
+  MatDestroy(&jacobian_);
+}
+
+std::unique_ptr<MechanicsSystem> MechanicsSystem::from_case(const Case& input, const TetMesh& mesh) {
+  const DofMap map = tissue_dof_map(mesh);
+  return std::make_unique<MechanicsSystem>(mesh, material::material_from_case(input), formulation_from_case(input),
+                                           scene_conditions(input, mesh, map));
+}
+
+void MechanicsSystem::initial_state(double t0, Vec y, Vec ydot) {
+  check(VecSet(y, 0.0), "VecSet");
+  check(VecSet(ydot, 0.0), "VecSet");
+  WriteArray values(y);
+  for (const auto& d : conditions_.dofs) values.data()[d.dof] = conditions_.value(mesh_, d, t0);
+}
+
+void MechanicsSystem::differential_mask(Vec id) {
+  WriteArray mask(id);
+  std::fill(mask.data(), mask.data() + displacement_dofs(), 0.0);
+  std::fill(mask.data() + displacement_dofs(), mask.data() + local_size(), 1.0);
+}
+
+void MechanicsSystem::gather_displacement(const double* y, std::size_t tissue_element, double* u_e) const {
+  const int* nodes = mesh_.tet(dofs_.tissue_tets[tissue_element]);
+  for (int a = 0; a < mesh_.nodes_per_tet; ++a)
+    for (int c = 0; c < 3; ++c) u_e[3 * a + c] = y[dofs_.dof(nodes[a], c)];
+}
+
+bool MechanicsSystem::assemble_internal(const double* y, const double* ydot, double* f_u, double* f_q,
+                                        double* energy) const {
+  const int n = mesh_.nodes_per_tet, terms = kernel_.prony_terms();
+  const auto& prony = kernel_.prony();
+  std::vector<double> u_e(3 * n);
+  std::fill(f_u, f_u + displacement_dofs(), 0.0);
+  if (energy) *energy = 0.0;
+  for (std::size_t k = 0; k < geometry_.size(); ++k) {
+    gather_displacement(y, k, u_e.data());
+    const double* q = terms ? y + viscous_offset(k) : nullptr;
+    const elements::ElementResult element = kernel_.evaluate(geometry_[k], u_e.data(), q, false);
+    if (element.inverted) return false;
+    if (energy) *energy += element.energy;
+    const int* nodes = mesh_.tet(dofs_.tissue_tets[k]);
+    for (int a = 0; a < n; ++a)
+      for (int c = 0; c < 3; ++c) f_u[dofs_.dof(nodes[a], c)] += element.residual[3 * a + c];
+    if (!f_q || !terms) continue;
+    // F_Q = Q' - (g S⁰ - Q)/τ, laid out like Q.
+    const PetscInt offset = viscous_offset(k);
+    for (int p = 0; p < geometry_[k].points; ++p)
+      for (int i = 0; i < terms; ++i)
+        for (int m = 0; m < elements::kVoigt; ++m) {
+          const PetscInt row = offset + (static_cast<PetscInt>(p) * terms + i) * elements::kVoigt + m;
+          f_q[row - displacement_dofs()] =
+              ydot[row] - (prony[i].g * element.points[p].elastic_stress[m] - y[row]) / prony[i].tau_s;
+        }
+  }
+  return true;
+}
+
+DaeStatus MechanicsSystem::residual(double t, Vec y, Vec ydot, Vec F) {
+  return guarded([&] {
+    ReadArray state(y), rate(ydot);
+    WriteArray out(F);
+    if (!assemble_internal(state.data(), rate.data(), out.data(), out.data() + displacement_dofs(), nullptr))
+      return DaeStatus::recoverable;
+    for (const auto& d : conditions_.dofs)
+      out.data()[d.dof] = state.data()[d.dof] - conditions_.value(mesh_, d, t);
+    return DaeStatus::ok;
+  });
+}
+
+DaeStatus MechanicsSystem::setup_jacobian(double /*t*/, Vec y, Vec /*ydot*/, double cj) {
+  return guarded([&] {
+    ReadArray state(y);
+    const int n = mesh_.nodes_per_tet, terms = kernel_.prony_terms();
+    const double scale = kernel_.condensed_tangent_scale(cj);
+    std::vector<double> u_e(3 * n);
+    std::vector<PetscInt> block_indices(n);
+    if (terms) condensation_.resize(geometry_.size() * geometry_.front().points);
+    check(MatZeroEntries(jacobian_), "MatZeroEntries");
+    bool inverted = false;
+    for (std::size_t k = 0; k < geometry_.size() && !inverted; ++k) {
+      gather_displacement(state.data(), k, u_e.data());
+      const double* q = terms ? state.data() + viscous_offset(k) : nullptr;
+      elements::ElementResult element = kernel_.evaluate(geometry_[k], u_e.data(), q, true, scale);
+      inverted = element.inverted;
+      if (inverted) break;
+      const int* nodes = mesh_.tet(dofs_.tissue_tets[k]);
+      for (int a = 0; a < n; ++a) block_indices[a] = dofs_.node_dof[nodes[a]] / 3;
+      check(MatSetValuesBlocked(jacobian_, n, block_indices.data(), n, block_indices.data(), element.stiffness.data(),
+                                ADD_VALUES),
+            "MatSetValuesBlocked");
+      if (terms)
+        std::move(element.points.begin(), element.points.end(),
+                  condensation_.begin() + static_cast<std::ptrdiff_t>(k * geometry_[k].points));
+    }
+    check(MatAssemblyBegin(jacobian_, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+    check(MatAssemblyEnd(jacobian_, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+    if (inverted) return DaeStatus::recoverable;  // assembled anyway: the next setup can zero it
+    std::vector<PetscInt> rows;
+    rows.reserve(conditions_.dofs.size());
+    for (const auto& d : conditions_.dofs) rows.push_back(d.dof);
+    check(MatZeroRows(jacobian_, static_cast<PetscInt>(rows.size()), rows.data(), 1.0, nullptr, nullptr),
+          "MatZeroRows");
+    check(KSPSetOperators(ksp_, jacobian_, jacobian_), "KSPSetOperators");
+    if (KSPSetUp(ksp_) != 0) return DaeStatus::recoverable;
+    cj_ = cj;
+    return DaeStatus::ok;
+  });
+}
+
+DaeStatus MechanicsSystem::solve_jacobian(Vec b, Vec x) {
+  return guarded([&] {
+    const int n = mesh_.nodes_per_tet, terms = kernel_.prony_terms(), dofs = 3 * n;
+    const auto& prony = kernel_.prony();
+    const PetscInt nu = displacement_dofs();
+    std::vector<double> B(static_cast<std::size_t>(elements::kVoigt) * dofs);
+    std::vector<double> relaxation(terms);  // 1 / (cj + 1/τ_i)
+    for (int i = 0; i < terms; ++i) relaxation[i] = 1.0 / (cj_ + 1.0 / prony[i].tau_s);
+    {
+      ReadArray in(b);
+      WriteArray rhs(rhs_);
+      std::copy(in.data(), in.data() + nu, rhs.data());
+      for (std::size_t k = 0; terms && k < geometry_.size(); ++k) {
+        const int* nodes = mesh_.tet(dofs_.tissue_tets[k]);
+        for (int p = 0; p < geometry_[k].points; ++p) {
+          // Σ_i b_Qi / (cj + 1/τ_i), then w Bᵀ of it.
+          std::array<double, elements::kVoigt> source{};
+          const double* b_q = in.data() + viscous_offset(k) + static_cast<PetscInt>(p) * terms * elements::kVoigt;
+          for (int i = 0; i < terms; ++i)
+            for (int m = 0; m < elements::kVoigt; ++m) source[m] += relaxation[i] * b_q[i * elements::kVoigt + m];
+          elements::green_strain_operator(condensation_[k * geometry_[k].points + p].deformation_gradient,
+                                          geometry_[k].gradient_at(p), n, B.data());
+          for (int a = 0; a < n; ++a)
+            for (int c = 0; c < 3; ++c) {
+              const int dof = dofs_.dof(nodes[a], c);
+              if (prescribed_[dof]) continue;
+              double s = 0.0;
+              for (int m = 0; m < elements::kVoigt; ++m) s += B[static_cast<std::size_t>(m) * dofs + 3 * a + c] * source[m];
+              rhs.data()[dof] += geometry_[k].weight[p] * s;
+            }
+        }
+      }
+    }
+    check(KSPSolve(ksp_, rhs_, solution_), "KSPSolve");
+    KSPConvergedReason reason;
+    check(KSPGetConvergedReason(ksp_, &reason), "KSPGetConvergedReason");
+    if (reason < 0) return DaeStatus::recoverable;
+
+    ReadArray in(b), x_u(solution_);
+    WriteArray out(x);
+    std::copy(x_u.data(), x_u.data() + nu, out.data());
+    std::vector<double> u_e(dofs);
+    for (std::size_t k = 0; terms && k < geometry_.size(); ++k) {
+      gather_displacement(x_u.data(), k, u_e.data());
+      for (int p = 0; p < geometry_[k].points; ++p) {
+        const elements::PointResponse& point = condensation_[k * geometry_[k].points + p];
+        elements::green_strain_operator(point.deformation_gradient, geometry_[k].gradient_at(p), n, B.data());
+        std::array<double, elements::kVoigt> strain{}, stress{};  // B x_u and D⁰ B x_u
+        for (int m = 0; m < elements::kVoigt; ++m)
+          for (int c = 0; c < dofs; ++c) strain[m] += B[static_cast<std::size_t>(m) * dofs + c] * u_e[c];
+        for (int m = 0; m < elements::kVoigt; ++m)
+          for (int l = 0; l < elements::kVoigt; ++l) stress[m] += point.elastic_tangent[m * elements::kVoigt + l] * strain[l];
+        const PetscInt offset = viscous_offset(k) + static_cast<PetscInt>(p) * terms * elements::kVoigt;
+        for (int i = 0; i < terms; ++i)
+          for (int m = 0; m < elements::kVoigt; ++m) {
+            const PetscInt row = offset + i * elements::kVoigt + m;
+            out.data()[row] = relaxation[i] * (in.data()[row] + prony[i].g / prony[i].tau_s * stress[m]);
+          }
+      }
+    }
+    return DaeStatus::ok;
+  });
+}
+
+Point3 MechanicsSystem::reaction_force(Vec y, const std::string& surface) const {
+  const auto faces = mesh_.surface_faces.find(surface);
+  if (faces == mesh_.surface_faces.end()) throw std::runtime_error("the mesh has no surface '" + surface + "'");
+  ReadArray state(y);
+  std::vector<double> f_u(displacement_dofs());
+  if (!assemble_internal(state.data(), nullptr, f_u.data(), nullptr, nullptr))
+    throw std::runtime_error("reaction_force: inverted element");
+  std::vector<int> nodes = faces->second;
+  std::sort(nodes.begin(), nodes.end());
+  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+  Point3 force{};
+  for (int node : nodes)
+    if (dofs_.node_dof[node] >= 0)
+      for (int c = 0; c < 3; ++c) force[c] += f_u[dofs_.dof(node, c)];
+  return force;
+}
+
+double MechanicsSystem::elastic_energy(Vec y) const {
+  ReadArray state(y);
+  std::vector<double> f_u(displacement_dofs());
+  double energy = 0.0;
+  if (!assemble_internal(state.data(), nullptr, f_u.data(), nullptr, &energy))
+    throw std::runtime_error("elastic_energy: inverted element");
+  return energy;
+}
+
+}  // namespace needlefem::mechanics

@@ -1,0 +1,107 @@
+// Quasi-static tissue mechanics with Prony viscoelasticity as a DAE F(t, y, y') = 0 for IDA.
+//
+// State y = (u, Q): nodal displacements u (tissue dofs, dof_map.hpp) followed by the Prony
+// internal variables Q_i at every quadrature point of every tissue element (element-major, then
+// point, then term, 6 Voigt components 11 22 33 23 13 12; viscous_offset()).
+//
+//   F_u = f_int(u, Q) - f_ext                      (algebraic; f_ext = 0 in these scenes)
+//   F_u = u - ū(t)                                 on prescribed dofs (dirichlet.hpp)
+//   F_Q = Q_i' - (g_i S⁰_iso(C) - Q_i) / τ_i      (differential; Simo 1987, Holzapfel 2000 §6.10)
+//
+// Newton matrix J = ∂F/∂y + c_j ∂F/∂y' in blocks (per quadrature point q, term i, weight w_q,
+// B_q and D⁰_q as in physics/elements/tet_element.hpp):
+//   J_uu = K (tangent at fixed Q),   J_uQ = -w_q B_qᵀ,
+//   J_Qu = -(g_i/τ_i) D⁰_q B_q,      J_QQ = (c_j + 1/τ_i) I   (diagonal: Q_i is local).
+// setup_jacobian condenses Q element by element (Schur complement):
+//   K̂ = J_uu - Σ J_uQ J_QQ⁻¹ J_Qu = K with D⁰ scaled by 1 - Σ_i g_i/(1 + c_j τ_i),
+// assembles K̂ into a PETSc AIJ matrix of block size 3 (prescribed rows replaced by identity
+// rows) and factors it with KSP (default preonly + LU from MUMPS; options prefix "tissue_",
+// e.g. -tissue_ksp_type gmres -tissue_pc_type gamg). solve_jacobian back-substitutes:
+//   K̂ x_u = b_u + Σ_q w_q B_qᵀ Σ_i b_Qi / (c_j + 1/τ_i)     (free rows only),
+//   x_Qi = (b_Qi + (g_i/τ_i) D⁰_q B_q x_u) / (c_j + 1/τ_i).
+// A non-positive det F anywhere gives DaeStatus::recoverable (IDA cuts the step); so does a
+// failed factorisation. Serial (one rank) for now: PETSc objects live on PETSC_COMM_SELF.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <petscksp.h>
+
+#include "integration/dae_system.hpp"
+#include "model/tet_mesh.hpp"
+#include "physics/elements/tet_element.hpp"
+#include "physics/material/material.hpp"
+#include "physics/mechanics/dirichlet.hpp"
+#include "physics/mechanics/dof_map.hpp"
+
+namespace needlefem {
+class Case;
+}
+
+namespace needlefem::mechanics {
+
+class MechanicsSystem final : public DaeSystem {
+ public:
+  // `mesh` must outlive the system. PETSc must be initialised. Throws std::runtime_error on
+  // PETSc failures and for inverted reference elements.
+  MechanicsSystem(const TetMesh& mesh, const material::Material& material, elements::Formulation formulation,
+                  DirichletConditions conditions);
+  ~MechanicsSystem() override;
+  MechanicsSystem(const MechanicsSystem&) = delete;
+  MechanicsSystem& operator=(const MechanicsSystem&) = delete;
+
+  // Material from [material], formulation from element.formulation, conditions of scene.kind.
+  static std::unique_ptr<MechanicsSystem> from_case(const Case& input, const TetMesh& mesh);
+
+  // --- DaeSystem -------------------------------------------------------------------------
+  PetscInt local_size() const override { return displacement_dofs() + viscous_dofs(); }
+  // Rest at t0: u = ū(t0) on prescribed dofs and 0 elsewhere, Q = 0, y' = 0 (consistent when
+  // ū(t0) = 0, as in both scenes at t0 = 0).
+  void initial_state(double t0, Vec y, Vec ydot) override;
+  void differential_mask(Vec id) override;
+  DaeStatus residual(double t, Vec y, Vec ydot, Vec F) override;
+  DaeStatus setup_jacobian(double t, Vec y, Vec ydot, double cj) override;
+  DaeStatus solve_jacobian(Vec b, Vec x) override;
+
+  // --- layout and results ------------------------------------------------------------------
+  PetscInt displacement_dofs() const { return dofs_.dof_count; }
+  PetscInt viscous_dofs() const { return viscous_per_element_ * static_cast<PetscInt>(dofs_.tissue_tets.size()); }
+  PetscInt viscous_offset(std::size_t tissue_element) const {
+    return displacement_dofs() + viscous_per_element_ * static_cast<PetscInt>(tissue_element);
+  }
+  const DofMap& dof_map() const { return dofs_; }
+  const DirichletConditions& conditions() const { return conditions_; }
+  const elements::TetElementKernel& kernel() const { return kernel_; }
+  const elements::ElementGeometry& geometry(std::size_t tissue_element) const { return geometry_[tissue_element]; }
+
+  // Force (N) the supports exert on the nodes of a named surface: the sum of the internal
+  // nodal forces there (equilibrium holds at free nodes, so these are the reactions).
+  Point3 reaction_force(Vec y, const std::string& surface) const;
+  // Instantaneous elastic energy of the tissue (J), viscous stresses not counted.
+  double elastic_energy(Vec y) const;
+
+ private:
+  // Internal force f_int (all displacement dofs) and, when rates are given, the viscous rows
+  // F_Q. Returns false for an inverted element.
+  bool assemble_internal(const double* y, const double* ydot, double* f_u, double* f_q, double* energy) const;
+  void gather_displacement(const double* y, std::size_t tissue_element, double* u_e) const;
+
+  const TetMesh& mesh_;
+  DofMap dofs_;
+  DirichletConditions conditions_;
+  elements::TetElementKernel kernel_;
+  std::vector<elements::ElementGeometry> geometry_;  // per tissue element
+  PetscInt viscous_per_element_ = 0;
+  std::vector<char> prescribed_;  // per displacement dof
+
+  // Newton matrix data kept from setup_jacobian for solve_jacobian.
+  double cj_ = 0.0;
+  std::vector<elements::PointResponse> condensation_;  // per element and point (viscous only)
+  Mat jacobian_ = nullptr;
+  KSP ksp_ = nullptr;
+  Vec rhs_ = nullptr, solution_ = nullptr;
+};
+
+}  // namespace needlefem::mechanics

@@ -1,0 +1,85 @@
+#include "mechanics_fixtures.hpp"
+
+#include <atomic>
+#include <cmath>
+#include <filesystem>
+#include <stdexcept>
+
+#include <unistd.h>
+
+namespace needlefem::mechanics::testing {
+
+namespace {
+
+std::filesystem::path fresh_folder() {
+  static std::atomic<int> counter{0};
+  auto folder = std::filesystem::temp_directory_path() /
+                ("needlefem_mechanics_" + std::to_string(getpid()) + "_" + std::to_string(counter++));
+  std::filesystem::create_directories(folder);
+  return folder;
+}
+
+SceneModel meshed(const Case& input) {
+  const auto folder = fresh_folder();
+  SceneModel scene = load_scene_model(input, folder);
+  std::filesystem::remove_all(folder);
+  return scene;
+}
+
+}  // namespace
+
+Problem::Problem(const std::string& toml)
+    : input(Case::parse(toml, "test")), scene(meshed(input)), system(MechanicsSystem::from_case(input, scene.mesh)) {
+  VecCreateSeq(PETSC_COMM_SELF, system->local_size(), &y);
+  VecDuplicate(y, &ydot);
+  system->initial_state(0.0, y, ydot);
+}
+
+Problem::~Problem() {
+  VecDestroy(&y);
+  VecDestroy(&ydot);
+}
+
+bool Problem::advance(double t0, double t1, int steps) {
+  Vec y_old, residual, correction;
+  VecDuplicate(y, &y_old);
+  VecDuplicate(y, &residual);
+  VecDuplicate(y, &correction);
+  const double h = (t1 - t0) / steps;
+  bool converged = true;
+  for (int step = 1; step <= steps && converged; ++step) {
+    const double t = t0 + step * h;
+    VecCopy(y, y_old);
+    converged = false;
+    for (int iteration = 0; iteration < 25 && !converged; ++iteration) {
+      VecWAXPY(ydot, -1.0, y_old, y);  // y' = (y - y_old)/h
+      VecScale(ydot, 1.0 / h);
+      if (system->residual(t, y, ydot, residual) != DaeStatus::ok) break;
+      if (system->setup_jacobian(t, y, ydot, 1.0 / h) != DaeStatus::ok) break;
+      if (system->solve_jacobian(residual, correction) != DaeStatus::ok) break;
+      VecAXPY(y, -1.0, correction);
+      double step_norm = 0.0, state_norm = 0.0;
+      VecNorm(correction, NORM_2, &step_norm);
+      VecNorm(y, NORM_2, &state_norm);
+      converged = step_norm <= 1e-12 * state_norm;
+    }
+  }
+  if (converged) {
+    VecWAXPY(ydot, -1.0, y_old, y);
+    VecScale(ydot, 1.0 / h);
+  }
+  VecDestroy(&y_old);
+  VecDestroy(&residual);
+  VecDestroy(&correction);
+  return converged;
+}
+
+double Problem::displacement(int node, int component) const {
+  const PetscScalar* values = nullptr;
+  VecGetArrayRead(y, &values);
+  const double u = values[system->dof_map().dof(node, component)];
+  VecRestoreArrayRead(y, &values);
+  return u;
+}
+
+}  // namespace needlefem::mechanics::testing

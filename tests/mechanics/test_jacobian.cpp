@@ -1,0 +1,102 @@
+// Taylor test of the global Newton matrix J = ∂F/∂y + cj ∂F/∂y' including the viscous
+// internal variables and their element-wise condensation: for dy = J⁻¹ b,
+//   ||F(y + h dy, y' + cj h dy) - F(y, y') - h b|| = O(h²).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <vector>
+
+#include "block_cases.hpp"
+#include "mechanics_fixtures.hpp"
+
+namespace needlefem::mechanics::testing {
+namespace {
+
+void fill_random(Vec v, double amplitude, PetscInt begin, PetscInt end, unsigned seed) {
+  std::mt19937 generator(seed);
+  std::uniform_real_distribution<double> uniform(-amplitude, amplitude);
+  PetscScalar* values = nullptr;
+  VecGetArray(v, &values);
+  for (PetscInt i = begin; i < end; ++i) values[i] = uniform(generator);
+  VecRestoreArray(v, &values);
+}
+
+double taylor_slope(const std::string& formulation, int order) {
+  // Uniaxial block (default faces): a mix of prescribed and free dofs.
+  Problem problem(block_case("", "[1.2, 0, 0, 0, 1, 0, 0, 0, 1]",
+                             "preset = \"miller-brain\"\nbulk_modulus_pa = 1e5\n", 0.5, order, formulation));
+  MechanicsSystem& system = *problem.system;
+  const PetscInt nu = system.displacement_dofs(), n = system.local_size();
+  EXPECT_GT(system.viscous_dofs(), 0);
+  const double t = 3e-7, cj = 4.0;  // moderate cj: viscous and elastic blocks both matter
+  fill_random(problem.y, 2e-5, 0, nu, 1);      // displacements up to 20 µm on a 1 mm block
+  fill_random(problem.y, 300.0, nu, n, 2);     // Q up to 300 Pa
+  fill_random(problem.ydot, 1e-4, 0, n, 3);
+  Vec b, dy, base, shifted_y, shifted_ydot, value;
+  VecDuplicate(problem.y, &b);
+  VecDuplicate(b, &dy);
+  VecDuplicate(b, &base);
+  VecDuplicate(b, &shifted_y);
+  VecDuplicate(b, &shifted_ydot);
+  VecDuplicate(b, &value);
+  VecSet(b, 0.0);
+  fill_random(b, 1e-3, 0, nu, 4);
+  fill_random(b, 100.0, nu, n, 5);
+  EXPECT_EQ(system.residual(t, problem.y, problem.ydot, base), DaeStatus::ok);
+  EXPECT_EQ(system.setup_jacobian(t, problem.y, problem.ydot, cj), DaeStatus::ok);
+  EXPECT_EQ(system.solve_jacobian(b, dy), DaeStatus::ok);
+  // Scale so that h = 1 moves displacements by ~50 µm (strains of order 0.1).
+  double largest = 0.0;
+  {
+    const PetscScalar* d = nullptr;
+    VecGetArrayRead(dy, &d);
+    for (PetscInt i = 0; i < nu; ++i) largest = std::max(largest, std::abs(d[i]));
+    VecRestoreArrayRead(dy, &d);
+  }
+  const double scale = 5e-5 / largest;
+  std::vector<double> hs, errors;
+  for (double h = 1.0; h > 1e-3; h /= 2.0) {
+    const double step = h * scale;
+    VecWAXPY(shifted_y, step, dy, problem.y);
+    VecWAXPY(shifted_ydot, cj * step, dy, problem.ydot);
+    EXPECT_EQ(system.residual(t, shifted_y, shifted_ydot, value), DaeStatus::ok);
+    VecAXPY(value, -1.0, base);
+    VecAXPY(value, -step, b);
+    double error = 0.0;
+    VecNorm(value, NORM_2, &error);
+    hs.push_back(step);
+    errors.push_back(error);
+  }
+  // Least-squares slope of log(error) vs log(h) over the asymptotic range (small h, above round-off).
+  double slope_sum = 0.0;
+  int count = 0;
+  for (std::size_t k = 3; k + 1 < hs.size(); ++k) {
+    slope_sum += std::log(errors[k] / errors[k + 1]) / std::log(hs[k] / hs[k + 1]);
+    ++count;
+  }
+  for (Vec* v : {&b, &dy, &base, &shifted_y, &shifted_ydot, &value}) VecDestroy(v);
+  return slope_sum / count;
+}
+
+TEST(MechanicsJacobian, TaylorSlopeIsTwoWithViscousTermsMixedTet10) {
+  const double slope = taylor_slope("mixed", 2);
+  std::printf("Taylor slope, mixed TET10 with Prony state: %.4f\n", slope);
+  EXPECT_NEAR(slope, 2.0, 0.1);
+}
+
+TEST(MechanicsJacobian, TaylorSlopeIsTwoWithViscousTermsDisplacementTet10) {
+  const double slope = taylor_slope("displacement", 2);
+  std::printf("Taylor slope, displacement TET10 with Prony state: %.4f\n", slope);
+  EXPECT_NEAR(slope, 2.0, 0.1);
+}
+
+TEST(MechanicsJacobian, TaylorSlopeIsTwoWithViscousTermsTet4) {
+  const double slope = taylor_slope("displacement", 1);
+  std::printf("Taylor slope, TET4 with Prony state: %.4f\n", slope);
+  EXPECT_NEAR(slope, 2.0, 0.1);
+}
+
+}  // namespace
+}  // namespace needlefem::mechanics::testing
