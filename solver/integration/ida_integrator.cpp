@@ -1,0 +1,207 @@
+#include "integration/ida_integrator.hpp"
+
+#include <exception>
+#include <stdexcept>
+#include <string>
+
+#include <fmt/core.h>
+#include <ida/ida.h>
+#include <nvector/nvector_petsc.h>
+#include <sundials/sundials_context.h>
+
+#include "integration/dae_linear_solver.hpp"
+#include "integration/petsc_session.hpp"
+
+namespace needlefem {
+
+namespace {
+
+// IDA's Newton convergence coefficient (its default, epcon = 0.33).
+constexpr double kNewtonConvergenceCoefficient = 0.33;
+
+Vec petsc_vector(N_Vector v) { return N_VGetVector_Petsc(v); }
+
+int residual_callback(realtype t, N_Vector y, N_Vector ydot, N_Vector F, void* user_data) {
+  auto& callbacks = *static_cast<DaeCallbackContext*>(user_data);
+  try {
+    return to_sundials_code(callbacks.system.residual(t, petsc_vector(y), petsc_vector(ydot), petsc_vector(F)));
+  } catch (const std::exception& e) {
+    callbacks.last_exception = e.what();
+    return -1;
+  }
+}
+
+int jacobian_callback(realtype t, realtype cj, N_Vector y, N_Vector ydot, N_Vector, SUNMatrix, void* user_data,
+                      N_Vector, N_Vector, N_Vector) {
+  auto& callbacks = *static_cast<DaeCallbackContext*>(user_data);
+  try {
+    return to_sundials_code(callbacks.system.setup_jacobian(t, petsc_vector(y), petsc_vector(ydot), cj));
+  } catch (const std::exception& e) {
+    callbacks.last_exception = e.what();
+    return -1;
+  }
+}
+
+// Keeps IDA's last error text for the exception; warnings go to stderr as IDA would print them.
+void error_handler(int code, const char* module, const char* function, char* message, void* user_data) {
+  auto& last_error = *static_cast<std::string*>(user_data);
+  if (code == IDA_WARNING) {
+    fmt::print(stderr, "needlefem: {} warning in {}: {}\n", module, function, message);
+    return;
+  }
+  last_error = fmt::format("{} in {}: {}", module, function, message);
+}
+
+void ida_check(int flag, const char* what) {
+  if (flag < 0) throw std::runtime_error(fmt::format("IDA: {} failed ({})", what, IDAGetReturnFlagName(flag)));
+}
+
+}  // namespace
+
+struct IdaIntegrator::Impl {
+  Impl(DaeSystem& system, const IdaOptions& options, MPI_Comm comm) : options(options), comm(comm), callbacks{system, {}} {}
+  ~Impl() {
+    IDAFree(&ida);
+    SUNLinSolFree(linear_solver);
+    SUNMatDestroy(jacobian);
+    N_VDestroy(y_nv);
+    N_VDestroy(ydot_nv);
+    VecDestroy(&y);
+    VecDestroy(&ydot);
+    if (context) SUNContext_Free(&context);
+  }
+
+  double tolerance_scale() const {
+    return options.fixed_step ? kFixedStepErrorTolerance / options.relative_tolerance : 1.0;
+  }
+
+  IdaOptions options;
+  MPI_Comm comm;
+  DaeCallbackContext callbacks;
+  std::string last_ida_error;
+  double time = 0.0;
+  SUNContext context = nullptr;
+  Vec y = nullptr, ydot = nullptr;
+  N_Vector y_nv = nullptr, ydot_nv = nullptr;
+  SUNMatrix jacobian = nullptr;
+  SUNLinearSolver linear_solver = nullptr;
+  void* ida = nullptr;
+};
+
+IdaIntegrator::IdaIntegrator(DaeSystem& system, const IdaOptions& options, double t0, MPI_Comm comm)
+    : impl_(std::make_unique<Impl>(system, options, comm)) {
+  if (!(options.relative_tolerance > 0.0) || !(options.absolute_tolerance >= 0.0))
+    throw std::invalid_argument(fmt::format("IDA tolerances must be rtol > 0, atol >= 0, got {}, {}",
+                                            options.relative_tolerance, options.absolute_tolerance));
+  if (options.max_order < 1 || options.max_order > 5)
+    throw std::invalid_argument(fmt::format("IDA max order must be 1..5, got {}", options.max_order));
+  if (options.fixed_step && !(*options.fixed_step > 0.0))
+    throw std::invalid_argument(fmt::format("fixed time step must be positive, got {}", *options.fixed_step));
+  Impl& m = *impl_;
+  m.time = t0;
+  if (SUNContext_Create(&m.comm, &m.context) != 0) throw std::runtime_error("SUNContext_Create failed");
+
+  petsc_check(VecCreateMPI(comm, system.local_size(), PETSC_DETERMINE, &m.y), "VecCreateMPI");
+  petsc_check(VecDuplicate(m.y, &m.ydot), "VecDuplicate");
+  system.initial_state(t0, m.y, m.ydot);
+  m.y_nv = N_VMake_Petsc(m.y, m.context);
+  m.ydot_nv = N_VMake_Petsc(m.ydot, m.context);
+
+  m.ida = IDACreate(m.context);
+  if (!m.ida) throw std::runtime_error("IDACreate failed");
+  ida_check(IDASetErrHandlerFn(m.ida, error_handler, &m.last_ida_error), "IDASetErrHandlerFn");
+  ida_check(IDAInit(m.ida, residual_callback, t0, m.y_nv, m.ydot_nv), "IDAInit");
+  ida_check(IDASetUserData(m.ida, &m.callbacks), "IDASetUserData");
+  const double scale = m.tolerance_scale();
+  ida_check(IDASStolerances(m.ida, options.relative_tolerance * scale, options.absolute_tolerance * scale),
+            "IDASStolerances");
+
+  {
+    Vec mask = nullptr;
+    petsc_check(VecDuplicate(m.y, &mask), "VecDuplicate");
+    system.differential_mask(mask);
+    N_Vector mask_nv = N_VMake_Petsc(mask, m.context);
+    const int flag = IDASetId(m.ida, mask_nv);  // IDA keeps its own copy
+    N_VDestroy(mask_nv);
+    VecDestroy(&mask);
+    ida_check(flag, "IDASetId");
+  }
+
+  m.jacobian = make_jacobian_handle(m.context);
+  m.linear_solver = make_dae_linear_solver(m.context, m.callbacks);
+  if (!m.jacobian || !m.linear_solver) throw std::runtime_error("creating the IDA linear solver failed");
+  ida_check(IDASetLinearSolver(m.ida, m.linear_solver, m.jacobian), "IDASetLinearSolver");
+  ida_check(IDASetJacFn(m.ida, jacobian_callback), "IDASetJacFn");
+
+  ida_check(IDASetMaxOrd(m.ida, options.max_order), "IDASetMaxOrd");
+  ida_check(IDASetMaxNonlinIters(m.ida, options.max_newton_iterations), "IDASetMaxNonlinIters");
+  ida_check(IDASetMaxNumSteps(m.ida, options.max_steps_per_advance), "IDASetMaxNumSteps");
+  ida_check(IDASetSuppressAlg(m.ida, options.suppress_algebraic_error ? SUNTRUE : SUNFALSE), "IDASetSuppressAlg");
+  double initial_step = options.initial_step, max_step = options.max_step;
+  if (options.fixed_step) {
+    initial_step = max_step = *options.fixed_step;
+    ida_check(IDASetNonlinConvCoef(m.ida, kNewtonConvergenceCoefficient / scale), "IDASetNonlinConvCoef");
+  }
+  ida_check(IDASetInitStep(m.ida, initial_step), "IDASetInitStep");
+  ida_check(IDASetMaxStep(m.ida, max_step), "IDASetMaxStep");
+}
+
+IdaIntegrator::~IdaIntegrator() = default;
+
+void IdaIntegrator::set_absolute_tolerances(Vec absolute_tolerances) {
+  Impl& m = *impl_;
+  Vec scaled = nullptr;
+  petsc_check(VecDuplicate(absolute_tolerances, &scaled), "VecDuplicate");
+  petsc_check(VecCopy(absolute_tolerances, scaled), "VecCopy");
+  petsc_check(VecScale(scaled, m.tolerance_scale()), "VecScale");
+  N_Vector scaled_nv = N_VMake_Petsc(scaled, m.context);
+  const int flag = IDASVtolerances(m.ida, m.options.relative_tolerance * m.tolerance_scale(), scaled_nv);
+  N_VDestroy(scaled_nv);
+  VecDestroy(&scaled);
+  ida_check(flag, "IDASVtolerances");
+}
+
+void IdaIntegrator::advance_to(double t_out) {
+  Impl& m = *impl_;
+  if (t_out == m.time) return;
+  if (!(t_out > m.time))
+    throw std::invalid_argument(fmt::format("advance_to({} s): the integrator is already at t = {} s", t_out, m.time));
+  ida_check(IDASetStopTime(m.ida, t_out), "IDASetStopTime");
+  m.last_ida_error.clear();
+  m.callbacks.last_exception.clear();
+  realtype t_reached = m.time;
+  const int flag = IDASolve(m.ida, t_out, &t_reached, m.y_nv, m.ydot_nv, IDA_NORMAL);
+  if (flag < 0) {
+    realtype t_failed = t_reached;
+    IDAGetCurrentTime(m.ida, &t_failed);
+    std::string reason = fmt::format("IDA stopped at t = {:.9g} s while advancing to t = {:.9g} s: {}", t_failed,
+                                     t_out, IDAGetReturnFlagName(flag));
+    if (!m.last_ida_error.empty()) reason += " (" + m.last_ida_error + ")";
+    if (!m.callbacks.last_exception.empty()) reason += "; " + m.callbacks.last_exception;
+    throw std::runtime_error(reason);
+  }
+  // IDA lands on the stop time up to round-off and interpolates y, y' there.
+  m.time = t_out;
+}
+
+double IdaIntegrator::time() const { return impl_->time; }
+Vec IdaIntegrator::state() const { return impl_->y; }
+Vec IdaIntegrator::state_rate() const { return impl_->ydot; }
+
+IdaCounters IdaIntegrator::counters() const {
+  const Impl& m = *impl_;
+  IdaCounters c;
+  ida_check(IDAGetNumSteps(m.ida, &c.steps), "IDAGetNumSteps");
+  ida_check(IDAGetNumResEvals(m.ida, &c.residual_evaluations), "IDAGetNumResEvals");
+  ida_check(IDAGetNumNonlinSolvIters(m.ida, &c.newton_iterations), "IDAGetNumNonlinSolvIters");
+  ida_check(IDAGetNumJacEvals(m.ida, &c.jacobian_setups), "IDAGetNumJacEvals");
+  ida_check(IDAGetNumLinSolvSetups(m.ida, &c.linear_solver_setups), "IDAGetNumLinSolvSetups");
+  ida_check(IDAGetNumErrTestFails(m.ida, &c.error_test_failures), "IDAGetNumErrTestFails");
+  ida_check(IDAGetNumNonlinSolvConvFails(m.ida, &c.newton_convergence_failures), "IDAGetNumNonlinSolvConvFails");
+  c.linear_iterations = m.callbacks.system.linear_iterations();
+  ida_check(IDAGetLastStep(m.ida, &c.last_step), "IDAGetLastStep");
+  ida_check(IDAGetLastOrder(m.ida, &c.last_order), "IDAGetLastOrder");
+  return c;
+}
+
+}  // namespace needlefem
