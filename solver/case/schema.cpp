@@ -168,6 +168,28 @@ std::vector<KeySpec> build_schema() {
               "with a naive split"),
       integer("mesh.seed", 1, 0, 1000000, "Seed of gmsh's random factor, fixed for deterministic meshes"),
 
+      // --- time integration (SUNDIALS IDA) and Newton-matrix solves (PETSc KSP) -------------
+      real("integration.relative_tolerance", 1e-4, 0.0, 1.0,
+           "IDA relative tolerance of the local error test (also sets the Newton accuracy)"),
+      real("integration.absolute_tolerance", 1e-8, 0.0, 1e6,
+           "IDA absolute tolerance, in the SI unit of each unknown (m, Pa, ...); the physics may set "
+           "one per field instead", false),
+      integer("integration.max_order", 5, 1, 5, "Highest BDF order IDA may use (1 = backward Euler)"),
+      real("integration.initial_step_s", 0.0, 0.0, 1e6, "First step size; 0 lets IDA choose", false),
+      real("integration.max_step_s", 0.0, 0.0, 1e6, "Largest step size; 0 means unbounded", false),
+      integer("integration.max_newton_iterations", 4, 1, 100,
+              "Newton iterations per step attempt before IDA cuts the step"),
+      flag("integration.suppress_algebraic_error", false,
+           "Leave algebraic unknowns (displacements, pressures) out of the local error test"),
+      real("integration.fixed_step_s", std::monostate{}, 0.0, 1e6,
+           "Stability studies: steps of exactly this size with the error test switched off "
+           "(Newton still converges to the tolerances); absent = adaptive steps"),
+      choice("integration.linear_solver", "mumps", {"mumps", "gmres-gamg", "gmres-asm"},
+             "Newton-matrix solver: direct LU (MUMPS), or GMRES with AMG or additive Schwarz/ILU; "
+             "override details after `--` with -nf_ksp_* / -nf_pc_* options"),
+      real("integration.linear_relative_tolerance", 1e-10, 0.0, 1.0,
+           "Krylov solvers: relative residual reduction per linear solve"),
+
       // --- tissue elements (physics/elements) -------------------------------------------------
       choice("element.formulation", "mixed", {"mixed", "displacement"},
              "mixed: mean-dilatation displacement/pressure element (element-constant pressure and "

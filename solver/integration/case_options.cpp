@@ -1,0 +1,26 @@
+#include "integration/case_options.hpp"
+
+namespace needlefem {
+
+IdaOptions ida_options_from_case(const Case& c) {
+  IdaOptions options;
+  options.relative_tolerance = c.real("integration.relative_tolerance");
+  options.absolute_tolerance = c.real("integration.absolute_tolerance");
+  options.max_order = static_cast<int>(c.integer("integration.max_order"));
+  options.initial_step = c.real("integration.initial_step_s");
+  options.max_step = c.real("integration.max_step_s");
+  options.max_newton_iterations = static_cast<int>(c.integer("integration.max_newton_iterations"));
+  options.suppress_algebraic_error = c.flag("integration.suppress_algebraic_error");
+  options.fixed_step = c.maybe_real("integration.fixed_step_s");
+  return options;
+}
+
+KspOptions ksp_options_from_case(const Case& c, const std::string& prefix) {
+  KspOptions options;
+  options.method = c.text("integration.linear_solver");
+  options.relative_tolerance = c.real("integration.linear_relative_tolerance");
+  options.prefix = prefix;
+  return options;
+}
+
+}  // namespace needlefem

@@ -1,0 +1,40 @@
+// The [integration] case keys reach the integrator and linear-solver options, with defaults.
+#include <gtest/gtest.h>
+
+#include "case/case.hpp"
+#include "integration/case_options.hpp"
+
+namespace needlefem {
+namespace {
+
+TEST(IntegrationCaseOptions, DefaultsAreIdaDefaultsAndMumps) {
+  const Case c = Case::parse("", "defaults");
+  const IdaOptions ida = ida_options_from_case(c);
+  EXPECT_DOUBLE_EQ(ida.relative_tolerance, 1e-4);
+  EXPECT_DOUBLE_EQ(ida.absolute_tolerance, 1e-8);
+  EXPECT_EQ(ida.max_order, 5);
+  EXPECT_EQ(ida.max_newton_iterations, 4);
+  EXPECT_FALSE(ida.fixed_step.has_value());
+  const KspOptions ksp = ksp_options_from_case(c);
+  EXPECT_EQ(ksp.method, "mumps");
+  EXPECT_EQ(ksp.prefix, "nf_");
+}
+
+TEST(IntegrationCaseOptions, GivenKeysAndOverridesAreUsed) {
+  const Case c = Case::parse(
+      "[integration]\nrelative_tolerance = 1e-6\nmax_order = 2\nfixed_step_s = 0.005\n"
+      "linear_solver = \"gmres-gamg\"\nsuppress_algebraic_error = true\n",
+      "inline", {"integration.max_newton_iterations=7"});
+  const IdaOptions ida = ida_options_from_case(c);
+  EXPECT_DOUBLE_EQ(ida.relative_tolerance, 1e-6);
+  EXPECT_EQ(ida.max_order, 2);
+  ASSERT_TRUE(ida.fixed_step.has_value());
+  EXPECT_DOUBLE_EQ(*ida.fixed_step, 0.005);
+  EXPECT_TRUE(ida.suppress_algebraic_error);
+  EXPECT_EQ(ida.max_newton_iterations, 7);
+  EXPECT_EQ(ksp_options_from_case(c).method, "gmres-gamg");
+  EXPECT_THROW(Case::parse("[integration]\nlinear_solver = \"cholmod\"\n", "inline"), CaseError);
+}
+
+}  // namespace
+}  // namespace needlefem
