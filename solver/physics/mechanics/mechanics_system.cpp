@@ -106,6 +106,11 @@ MechanicsSystem::MechanicsSystem(const TetMesh& mesh, const material::Material& 
   check(KSPGetPC(ksp_, &pc), "KSPGetPC");
   check(PCSetType(pc, PCLU), "PCSetType");
   check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
+  // Near-incompressible tissue (K/mu up to 1e6) delays many pivots in MUMPS; its default 20 %
+  // workspace margin then runs out (INFOG(1) = -9). Give 100 % unless the user chose a value.
+  PetscBool workspace_given = PETSC_FALSE;
+  check(PetscOptionsHasName(nullptr, "tissue_", "-mat_mumps_icntl_14", &workspace_given), "PetscOptionsHasName");
+  if (!workspace_given) check(PetscOptionsSetValue(nullptr, "-tissue_mat_mumps_icntl_14", "100"), "PetscOptionsSetValue");
   check(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
   check(VecCreateSeq(PETSC_COMM_SELF, dofs_.dof_count, &rhs_), "VecCreateSeq");
   check(VecDuplicate(rhs_, &solution_), "VecDuplicate");
