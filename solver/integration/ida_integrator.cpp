@@ -71,6 +71,18 @@ struct IdaIntegrator::Impl {
     if (context) SUNContext_Free(&context);
   }
 
+  // Appends IDA's own message and a caught exception's text, if any, to `reason`.
+  std::string with_failure_details(const std::string& reason) const {
+    std::string text = reason;
+    if (!last_ida_error.empty()) text += " (" + last_ida_error + ")";
+    if (!callbacks.last_exception.empty()) text += "; " + callbacks.last_exception;
+    return text;
+  }
+  void clear_failure_details() {
+    last_ida_error.clear();
+    callbacks.last_exception.clear();
+  }
+
   double tolerance_scale() const {
     return options.fixed_step ? kFixedStepErrorTolerance / options.relative_tolerance : 1.0;
   }
@@ -161,24 +173,33 @@ void IdaIntegrator::set_absolute_tolerances(Vec absolute_tolerances) {
   ida_check(flag, "IDASVtolerances");
 }
 
+void IdaIntegrator::make_initial_state_consistent(double t_first_output) {
+  Impl& m = *impl_;
+  m.clear_failure_details();
+  const int flag = IDACalcIC(m.ida, IDA_YA_YDP_INIT, t_first_output);
+  if (flag < 0) {
+    const std::string reason = fmt::format("IDA could not make the initial state at t = {:.9g} s consistent: {}", m.time,
+                                     IDAGetReturnFlagName(flag));
+    throw std::runtime_error(m.with_failure_details(reason));
+  }
+  ida_check(IDAGetConsistentIC(m.ida, m.y_nv, m.ydot_nv), "IDAGetConsistentIC");
+}
+
 void IdaIntegrator::advance_to(double t_out) {
   Impl& m = *impl_;
   if (t_out == m.time) return;
   if (!(t_out > m.time))
     throw std::invalid_argument(fmt::format("advance_to({} s): the integrator is already at t = {} s", t_out, m.time));
   ida_check(IDASetStopTime(m.ida, t_out), "IDASetStopTime");
-  m.last_ida_error.clear();
-  m.callbacks.last_exception.clear();
+  m.clear_failure_details();
   realtype t_reached = m.time;
   const int flag = IDASolve(m.ida, t_out, &t_reached, m.y_nv, m.ydot_nv, IDA_NORMAL);
   if (flag < 0) {
     realtype t_failed = t_reached;
     IDAGetCurrentTime(m.ida, &t_failed);
-    std::string reason = fmt::format("IDA stopped at t = {:.9g} s while advancing to t = {:.9g} s: {}", t_failed,
+    const std::string reason = fmt::format("IDA stopped at t = {:.9g} s while advancing to t = {:.9g} s: {}", t_failed,
                                      t_out, IDAGetReturnFlagName(flag));
-    if (!m.last_ida_error.empty()) reason += " (" + m.last_ida_error + ")";
-    if (!m.callbacks.last_exception.empty()) reason += "; " + m.callbacks.last_exception;
-    throw std::runtime_error(reason);
+    throw std::runtime_error(m.with_failure_details(reason));
   }
   // IDA lands on the stop time up to round-off and interpolates y, y' there.
   m.time = t_out;

@@ -73,6 +73,13 @@ class IdaIntegrator {
   // and pascals for pressures. Replaces options.absolute_tolerance.
   void set_absolute_tolerances(Vec absolute_tolerances);
 
+  // Make the initial state consistent (F(t0, y, y') = 0) with IDACalcIC: keeps the
+  // differential components of y, solves for the algebraic components of y and for the
+  // derivatives y' of the differential ones. `t_first_output` (> t0) only sets the scale of
+  // the trial step. Call before the first advance_to(), when the system's initial_state() is
+  // not already consistent.
+  void make_initial_state_consistent(double t_first_output);
+
   // Integrate to exactly t_out (> time()): t_out is a stop time no step crosses, and on
   // return time() == t_out and state()/state_rate() hold y and y' there.
   void advance_to(double t_out);
