@@ -63,7 +63,7 @@ struct IdaCounters {
 class IdaIntegrator {
  public:
   // Calls system.initial_state(t0, ...) and prepares IDA; `comm` must be the communicator of
-  // the system's vectors.
+  // the system's vectors. The integrator owns one SUNContext (made with `comm`) for its life.
   IdaIntegrator(DaeSystem& system, const IdaOptions& options, double t0, MPI_Comm comm = PETSC_COMM_WORLD);
   ~IdaIntegrator();
   IdaIntegrator(const IdaIntegrator&) = delete;
