@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "case/case.hpp"
+#include "integration/case_options.hpp"
 
 namespace needlefem::mechanics {
 
@@ -61,7 +62,8 @@ elements::Formulation formulation_from_case(const Case& input) {
 }  // namespace
 
 MechanicsSystem::MechanicsSystem(const TetMesh& mesh, const material::Material& material,
-                                 elements::Formulation formulation, DirichletConditions conditions)
+                                 elements::Formulation formulation, DirichletConditions conditions,
+                                 const KspOptions& solver_options)
     : mesh_(mesh), dofs_(tissue_dof_map(mesh)), conditions_(std::move(conditions)), kernel_(material, formulation) {
   const int n = mesh.nodes_per_tet;
   std::vector<double> coordinates(3 * n);
@@ -99,19 +101,15 @@ MechanicsSystem::MechanicsSystem(const TetMesh& mesh, const material::Material& 
   // factorisation is reused from one setup to the next.
   check(MatSetOption(jacobian_, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE), "MatSetOption");
 
-  check(KSPCreate(PETSC_COMM_SELF, &ksp_), "KSPCreate");
-  check(KSPSetOptionsPrefix(ksp_, "tissue_"), "KSPSetOptionsPrefix");
-  check(KSPSetType(ksp_, KSPPREONLY), "KSPSetType");
-  PC pc = nullptr;
-  check(KSPGetPC(ksp_, &pc), "KSPGetPC");
-  check(PCSetType(pc, PCLU), "PCSetType");
-  check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
   // Near-incompressible tissue (K/mu up to 1e6) delays many pivots in MUMPS; its default 20 %
   // workspace margin then runs out (INFOG(1) = -9). Give 100 % unless the user chose a value.
   PetscBool workspace_given = PETSC_FALSE;
-  check(PetscOptionsHasName(nullptr, "tissue_", "-mat_mumps_icntl_14", &workspace_given), "PetscOptionsHasName");
-  if (!workspace_given) check(PetscOptionsSetValue(nullptr, "-tissue_mat_mumps_icntl_14", "100"), "PetscOptionsSetValue");
-  check(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
+  check(PetscOptionsHasName(nullptr, solver_options.prefix.c_str(), "-mat_mumps_icntl_14", &workspace_given),
+        "PetscOptionsHasName");
+  if (!workspace_given)
+    check(PetscOptionsSetValue(nullptr, ("-" + solver_options.prefix + "mat_mumps_icntl_14").c_str(), "100"),
+          "PetscOptionsSetValue");
+  solver_ = std::make_unique<KspSolver>(PETSC_COMM_SELF, solver_options);
   check(VecCreateSeq(PETSC_COMM_SELF, dofs_.dof_count, &rhs_), "VecCreateSeq");
   check(VecDuplicate(rhs_, &solution_), "VecDuplicate");
 }
@@ -119,14 +117,13 @@ MechanicsSystem::MechanicsSystem(const TetMesh& mesh, const material::Material& 
 MechanicsSystem::~MechanicsSystem() {
   VecDestroy(&solution_);
   VecDestroy(&rhs_);
-  KSPDestroy(&ksp_);
   MatDestroy(&jacobian_);
 }
 
 std::unique_ptr<MechanicsSystem> MechanicsSystem::from_case(const Case& input, const TetMesh& mesh) {
   const DofMap map = tissue_dof_map(mesh);
   return std::make_unique<MechanicsSystem>(mesh, material::material_from_case(input), formulation_from_case(input),
-                                           scene_conditions(input, mesh, map));
+                                           scene_conditions(input, mesh, map), ksp_options_from_case(input));
 }
 
 void MechanicsSystem::initial_state(double t0, Vec y, Vec ydot) {
@@ -223,8 +220,7 @@ DaeStatus MechanicsSystem::setup_jacobian(double /*t*/, Vec y, Vec /*ydot*/, dou
     for (const auto& d : conditions_.dofs) rows.push_back(d.dof);
     check(MatZeroRows(jacobian_, static_cast<PetscInt>(rows.size()), rows.data(), 1.0, nullptr, nullptr),
           "MatZeroRows");
-    check(KSPSetOperators(ksp_, jacobian_, jacobian_), "KSPSetOperators");
-    if (KSPSetUp(ksp_) != 0) return DaeStatus::recoverable;
+    if (!solver_->factor(jacobian_)) return DaeStatus::recoverable;
     cj_ = cj;
     return DaeStatus::ok;
   });
@@ -263,10 +259,7 @@ DaeStatus MechanicsSystem::solve_jacobian(Vec b, Vec x) {
         }
       }
     }
-    check(KSPSolve(ksp_, rhs_, solution_), "KSPSolve");
-    KSPConvergedReason reason;
-    check(KSPGetConvergedReason(ksp_, &reason), "KSPGetConvergedReason");
-    if (reason < 0) return DaeStatus::recoverable;
+    if (!solver_->solve(rhs_, solution_)) return DaeStatus::recoverable;
 
     ReadArray in(b), x_u(solution_);
     WriteArray out(x);

@@ -15,8 +15,8 @@
 // setup_jacobian condenses Q element by element (Schur complement):
 //   K̂ = J_uu - Σ J_uQ J_QQ⁻¹ J_Qu = K with D⁰ scaled by 1 - Σ_i g_i/(1 + c_j τ_i),
 // assembles K̂ into a PETSc AIJ matrix of block size 3 (prescribed rows replaced by identity
-// rows) and factors it with KSP (default preonly + LU from MUMPS; options prefix "tissue_",
-// e.g. -tissue_ksp_type gmres -tissue_pc_type gamg). solve_jacobian back-substitutes:
+// rows) and factors it with integration/KspSolver (MUMPS LU by default; [integration] keys and
+// -nf_ksp_* options choose others). solve_jacobian back-substitutes:
 //   K̂ x_u = b_u + Σ_q w_q B_qᵀ Σ_i b_Qi / (c_j + 1/τ_i)     (free rows only),
 //   x_Qi = (b_Qi + (g_i/τ_i) D⁰_q B_q x_u) / (c_j + 1/τ_i).
 // A non-positive det F anywhere gives DaeStatus::recoverable (IDA cuts the step); so does a
@@ -30,6 +30,7 @@
 #include <petscksp.h>
 
 #include "integration/dae_system.hpp"
+#include "integration/ksp_solver.hpp"
 #include "model/tet_mesh.hpp"
 #include "physics/elements/tet_element.hpp"
 #include "physics/material/material.hpp"
@@ -47,12 +48,13 @@ class MechanicsSystem final : public DaeSystem {
   // `mesh` must outlive the system. PETSc must be initialised. Throws std::runtime_error on
   // PETSc failures and for inverted reference elements.
   MechanicsSystem(const TetMesh& mesh, const material::Material& material, elements::Formulation formulation,
-                  DirichletConditions conditions);
+                  DirichletConditions conditions, const KspOptions& solver_options = {});
   ~MechanicsSystem() override;
   MechanicsSystem(const MechanicsSystem&) = delete;
   MechanicsSystem& operator=(const MechanicsSystem&) = delete;
 
-  // Material from [material], formulation from element.formulation, conditions of scene.kind.
+  // Material from [material], formulation from element.formulation, conditions of scene.kind,
+  // linear solver from [integration].
   static std::unique_ptr<MechanicsSystem> from_case(const Case& input, const TetMesh& mesh);
 
   // --- DaeSystem -------------------------------------------------------------------------
@@ -64,6 +66,7 @@ class MechanicsSystem final : public DaeSystem {
   DaeStatus residual(double t, Vec y, Vec ydot, Vec F) override;
   DaeStatus setup_jacobian(double t, Vec y, Vec ydot, double cj) override;
   DaeStatus solve_jacobian(Vec b, Vec x) override;
+  long linear_iterations() const override { return solver_->iterations(); }
 
   // --- layout and results ------------------------------------------------------------------
   PetscInt displacement_dofs() const { return dofs_.dof_count; }
@@ -100,7 +103,7 @@ class MechanicsSystem final : public DaeSystem {
   double cj_ = 0.0;
   std::vector<elements::PointResponse> condensation_;  // per element and point (viscous only)
   Mat jacobian_ = nullptr;
-  KSP ksp_ = nullptr;
+  std::unique_ptr<KspSolver> solver_;
   Vec rhs_ = nullptr, solution_ = nullptr;
 };
 
