@@ -62,6 +62,7 @@ nlohmann::json mesh_report(const Case& c, const SceneModel& scene, const Partiti
                          {"naive_interface_nodes", partition.naive_interface_nodes},
                          {"metis_edge_cut", partition.edge_cut},
                          {"max_imbalance", partition.max_imbalance}};
+  report["high_order_optimisation"] = scene.info.high_order_optimisation;
   report["seconds"] = {{"meshing", scene.info.seconds}, {"total", total_s}};
   return report;
 }

@@ -22,6 +22,7 @@ struct SceneMeshInfo {
   double needle_analytic_volume_m3 = 0;  // from geometry/needle_tip (independent)
   double domain_volume_m3 = 0;           // cube or block without the cavity: the bounding solid
   double seconds = 0;
+  std::string high_order_optimisation;  // which gmsh optimisation passes ran, and misses
 };
 
 // Throws CaseError for impossible geometry (naming the violated rule) and std::runtime_error
