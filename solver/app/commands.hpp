@@ -26,5 +26,7 @@ void add_keys_command(CLI::App& app);
 void add_material_test_command(CLI::App& app);
 void add_magnet_command(CLI::App& app);
 void add_replay_command(CLI::App& app);
+void add_steer_command(CLI::App& app);
+void add_run_command(CLI::App& app);
 
 }  // namespace needlefem::app

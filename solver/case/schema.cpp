@@ -190,12 +190,70 @@ std::vector<KeySpec> build_schema() {
       real("integration.linear_relative_tolerance", 1e-10, 0.0, 1.0,
            "Krylov solvers: relative residual reduction per linear solve"),
 
+      // --- outputs of `needlefem run` (solver/run) ----------------------------------------------
+      real("output.interval_s", 0.01, 0.0, 1e6,
+           "Time between output times (fields, maxima, reactions); the history ends at motion.duration_s "
+           "(brain-tip) or loading.ramp_s + loading.hold_s (block), which is always an output time"),
+      real("output.density_kg_per_m3", 1040.0, 0.0, 1e6,
+           "Tissue density, used only to report the kinetic energy the quasi-static model neglects "
+           "(brain: 1040)"),
+
       // --- tissue elements (physics/elements) -------------------------------------------------
       choice("element.formulation", "mixed", {"mixed", "displacement"},
              "mixed: mean-dilatation displacement/pressure element (element-constant pressure and "
              "dilatation condensed per element, like Abaqus C3D10H), free of volumetric locking; "
              "displacement: displacement-only element, which locks as K/mu grows (for the locking "
              "study). On 4-node tets both are the same element"),
+
+      // --- needle-tissue contact (physics/contact) ----------------------------------------------
+      real("contact.friction_coefficient", 0.5, 0.0, 10.0, "Coulomb friction coefficient mu", false),
+      real("contact.penalty_factor", 100.0, 0.0, 1e8,
+           "c in the normal penalty eps_N = c mu0 / h_face (mu0: the tissue's instantaneous shear modulus, "
+           "h_face: size of each contact face); the interpenetration is ~ pressure h_face / (c mu0)"),
+      real("contact.slip_velocity_regularisation_mm_per_s", 1e-2, 0.0, 1e6,
+           "eps_v of the friction law t_T = -mu p v_T / sqrt(|v_T|^2 + eps_v^2): below the Coulomb limit "
+           "the interface creeps at ~eps_v instead of sticking exactly"),
+
+      // --- magnet steering of the compliant needle (steering/, `needlefem steer`, paper 000) ----
+      // The needle geometry comes from needle.neck_length_mm, neck_diameter_mm, head_length_mm
+      // and radius_mm. The tissue block spans x, y in [-size/2, size/2], z in [0, size_z]; the
+      // needle enters at the centre of the z = 0 face along +z; the obstacle sits at the centre.
+      real("steering.neck_youngs_modulus_gpa", 200.0, 0.0, 1e4, "Young's modulus of the neck (hinge) material"),
+      real("steering.tissue_spring_constant_n_per_m2", 0.0, 0.0, 1e12,
+           "Tissue spring constant mu_t per unit length resisting the head's rotation (Eq. 2.4); 0 = none",
+           false),
+      real("steering.force_angle_deg", 0.0, 0.0, 89.0,
+           "Angle phi between the magnetic pull and the head's normal (Eq. 2.7)", false),
+      real("steering.max_turning_angle_deg", 45.0, 0.0, 89.0,
+           "Largest head turning angle a schedule may give (Eq. 2.7 is a small-rotation model)"),
+      real("steering.magnet_residual_flux_density_t", 1.3, 0.0, 10.0,
+           "Magnet residual flux density Br (not given in paper 000; N42 NdFeB)"),
+      real("steering.magnet_pole_width_mm", 50.0, 0.0, 1e4, "Magnet pole width W (paper: 50)"),
+      real("steering.magnet_pole_length_mm", 60.0, 0.0, 1e4, "Magnet pole length L (paper: 60)"),
+      real("steering.magnet_thickness_mm", 20.0, 0.0, 1e4,
+           "Magnet thickness T along its magnetisation (not given in paper 000)"),
+      real("steering.magnet_correction_factor", 0.85, 0.0, 1.0, "Correction factor on Eq. 2.3 (paper: 0.8-0.9)"),
+      reals("steering.schedule_depth_mm", std::monostate{}, 0, 0.0, 1e4,
+            "Magnet schedule against insertion depth (strictly increasing); give this or schedule_time_s. "
+            "Without either there is no magnet and the needle goes straight"),
+      reals("steering.schedule_time_s", std::monostate{}, 0, 0.0, 1e6,
+            "Magnet schedule against time (strictly increasing; depth = insertion_speed_mm_per_s * time)"),
+      reals("steering.magnet_distance_mm", std::monostate{}, 0, 5.0, 5000.0,
+            "Magnet pole-face distance to the head at each schedule entry (linear in between, held "
+            "beyond the ends); park the magnet far away (e.g. 300 mm) to release the head"),
+      reals("steering.pull_azimuth_deg", std::monostate{}, 0, -3600.0, 3600.0,
+            "Direction of the pull at each schedule entry: azimuth about the insertion axis z from +x "
+            "(the pull acts in the plane normal to the shaft)"),
+      real("steering.insertion_depth_mm", 40.0, 0.0, 1e4, "Total insertion depth (length pushed in)"),
+      real("steering.insertion_speed_mm_per_s", 1.0, 0.0, 1e4, "Insertion speed (sets the time axis)"),
+      real("steering.depth_step_mm", 0.05, 0.0, 100.0, "Depth step of the path integration"),
+      reals("steering.block_size_mm", std::vector<double>{30.0, 30.0, 40.0}, 3, 0.0, 1e4,
+            "Tissue block edges along x, y, z", true),
+      real("steering.obstacle_radius_mm", 4.0, 0.0, 1e4, "Radius of the obstacle sphere at the block's centre"),
+      reals("steering.target_mm", std::vector<double>{0.0, 0.0, 34.0}, 3, -1e4, 1e4,
+            "Target point (x, y, z) the tip should reach at the end of the insertion"),
+      real("steering.target_tolerance_mm", 0.5, 0.0, 1e4,
+           "Miss distance below which the summary reports the target as reached"),
   };
 }
 

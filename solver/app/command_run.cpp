@@ -1,0 +1,41 @@
+// `needlefem run CASE.toml [--out DIR] [--set k=v] [-- PETSc/SUNDIALS options]`: solves the
+// case's tissue mechanics over its history (run/run_case.hpp) and writes
+//   DIR/mesh.msh, DIR/result.h5 + result.xdmf (fields per output time), DIR/history.csv,
+//   DIR/summary.json (maxima with time and position, reactions, solver statistics, material,
+//   resolved case).
+#include <fmt/core.h>
+
+#include "app/commands.hpp"
+#include "case/case.hpp"
+#include "run/run_case.hpp"
+
+namespace needlefem::app {
+
+namespace {
+
+void run_command(const CaseOptions& options) {
+  const Case c = Case::load(options.case_file, options.overrides);
+  run::RunOptions run_options;
+  run_options.out_dir = options.out_dir;
+  run_options.petsc_options = backend_options();
+  const auto summary = run::run_case(c, run_options);
+  const auto& solver = summary["solver"];
+  fmt::print("run: {} output times to t = {} s in {:.2f} s ({} steps, {} Newton its, {} Jacobians, {} dofs); "
+             "written {}\n",
+             summary["output_times"].get<std::size_t>(), summary["time_reached_s"].get<double>(),
+             solver["wall_s"].get<double>(), solver["steps"].get<long>(), solver["newton_iterations"].get<long>(),
+             solver["jacobian_setups"].get<long>(), solver["dofs"].get<long>(),
+             (run_options.out_dir / "summary.json").string());
+}
+
+}  // namespace
+
+void add_run_command(CLI::App& app) {
+  auto* command = app.add_subcommand(
+      "run", "Solve a case's tissue mechanics with IDA: HDF5/XDMF fields, history.csv and summary.json");
+  auto options = std::make_shared<CaseOptions>();
+  options->add_to(*command, "out/run");
+  command->callback([options] { run_command(*options); });
+}
+
+}  // namespace needlefem::app

@@ -1,0 +1,148 @@
+#include "physics/fields/tissue_fields.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <stdexcept>
+
+#include "model/tet_geometry.hpp"
+#include "physics/fields/point_quantities.hpp"
+
+namespace needlefem::fields {
+
+namespace {
+
+// Voigt 11 22 33 23 13 12 (physics/elements) to a symmetric tensor.
+Mat3d from_voigt(const double* v) {
+  Mat3d m;
+  m(0, 0) = v[0];
+  m(1, 1) = v[1];
+  m(2, 2) = v[2];
+  m(1, 2) = m(2, 1) = v[3];
+  m(0, 2) = m(2, 0) = v[4];
+  m(0, 1) = m(1, 0) = v[5];
+  return m;
+}
+
+class ReadVec {
+ public:
+  explicit ReadVec(Vec v) : vec_(v) { VecGetArrayRead(vec_, &data_); }
+  ~ReadVec() { VecRestoreArrayRead(vec_, &data_); }
+  ReadVec(const ReadVec&) = delete;
+  ReadVec& operator=(const ReadVec&) = delete;
+  const double* data() const { return data_; }
+
+ private:
+  Vec vec_;
+  const PetscScalar* data_ = nullptr;
+};
+
+}  // namespace
+
+const std::array<ScalarQuantityInfo, kScalarQuantities>& scalar_quantities() {
+  static const std::array<ScalarQuantityInfo, kScalarQuantities> info{{{"von_mises", "Pa"},
+                                                                        {"max_principal_stress", "Pa"},
+                                                                        {"log_strain", "1"},
+                                                                        {"strain_rate", "1/s"},
+                                                                        {"equivalent_strain_rate", "1/s"},
+                                                                        {"pressure", "Pa"}}};
+  return info;
+}
+
+TissueFieldEvaluator::TissueFieldEvaluator(const mechanics::MechanicsSystem& system, const TetMesh& mesh,
+                                           const material::Material& material, double density_kg_per_m3)
+    : system_(system), mesh_(mesh), material_(material), density_(density_kg_per_m3) {
+  const int n = mesh.nodes_per_tet;
+  for (const auto& point : elements::element_quadrature(n)) {
+    std::vector<double> N(n);
+    tet_shape_values(n, point.xi, N.data());
+    shape_values_.push_back(std::move(N));
+  }
+  for (std::size_t e : system.dof_map().tissue_tets)
+    for (const auto& N : shape_values_) {
+      Point3 X{};
+      for (int a = 0; a < n; ++a)
+        for (int c = 0; c < 3; ++c) X[c] += N[a] * mesh.nodes[mesh.tet(e)[a]][c];
+      point_positions_.push_back(X);
+    }
+}
+
+TissueFields TissueFieldEvaluator::evaluate(Vec y, Vec ydot) const {
+  const ReadVec state(y), rate(ydot);
+  const auto& dofs = system_.dof_map();
+  const int n = mesh_.nodes_per_tet, points = static_cast<int>(shape_values_.size());
+  const int prony_terms = system_.kernel().prony_terms();
+  const auto* tissue = std::get_if<material::PolynomialTissue>(&material_.law());
+  const bool mixed = system_.kernel().formulation() == elements::Formulation::mean_dilatation;
+
+  TissueFields out;
+  out.displacement.assign(3 * mesh_.nodes.size(), 0.0);
+  out.velocity.assign(3 * mesh_.nodes.size(), 0.0);
+  for (std::size_t node = 0; node < mesh_.nodes.size(); ++node)
+    if (dofs.node_dof[node] >= 0)
+      for (int c = 0; c < 3; ++c) {
+        out.displacement[3 * node + c] = state.data()[dofs.dof(static_cast<int>(node), c)];
+        out.velocity[3 * node + c] = rate.data()[dofs.dof(static_cast<int>(node), c)];
+      }
+  out.cauchy_stress.assign(6 * mesh_.tet_count(), 0.0);
+  for (auto& cells : out.cell_maximum) cells.assign(mesh_.tet_count(), 0.0);
+  for (auto& m : out.maximum) m.value = -std::numeric_limits<double>::infinity();
+
+  std::vector<double> u_e(3 * n), v_e(3 * n);
+  for (std::size_t k = 0; k < dofs.tissue_tets.size(); ++k) {
+    const std::size_t e = dofs.tissue_tets[k];
+    for (int a = 0; a < n; ++a)
+      for (int c = 0; c < 3; ++c) {
+        const int dof = dofs.dof(mesh_.tet(e)[a], c);
+        u_e[3 * a + c] = state.data()[dof];
+        v_e[3 * a + c] = rate.data()[dof];
+      }
+    const double* viscous = prony_terms ? state.data() + system_.viscous_offset(k) : nullptr;
+    const auto& geometry = system_.geometry(k);
+    const elements::ElementResult result = system_.kernel().evaluate(geometry, u_e.data(), viscous, false);
+    if (result.inverted) throw std::runtime_error("output fields: inverted tissue element " + std::to_string(e));
+
+    Mat3d average_stress;
+    for (int q = 0; q < points; ++q) {
+      const double w = geometry.weight[q];
+      const double* G = geometry.gradient_at(q);
+      Mat3d F, F_rate, stress;
+      F.a = result.points[q].deformation_gradient;
+      Point3 velocity{};
+      for (int a = 0; a < n; ++a)
+        for (int i = 0; i < 3; ++i) {
+          velocity[i] += shape_values_[q][a] * v_e[3 * a + i];
+          for (int J = 0; J < 3; ++J) F_rate(i, J) += v_e[3 * a + i] * G[3 * a + J];
+        }
+      out.kinetic_energy += 0.5 * density_ * w * (velocity[0] * velocity[0] + velocity[1] * velocity[1] + velocity[2] * velocity[2]);
+
+      if (tissue) {
+        Mat3d isochoric = from_voigt(result.points[q].elastic_stress.data());
+        for (int i = 0; i < prony_terms; ++i)
+          isochoric -= from_voigt(viscous + (static_cast<std::size_t>(q) * prony_terms + i) * elements::kVoigt);
+        const double p = mixed ? result.pressure : tissue->volumetric.pressure(material::det(F));
+        stress = push_forward(F, isochoric) + Mat3d::diagonal(p, p, p);
+      } else {
+        const Mat3d P = material_.update(F, material_.initial_state(), 0.0).first_pk;
+        stress = (1.0 / material::det(F)) * (P * material::transpose(F));
+      }
+      const PointQuantities pq = point_quantities(F, F_rate, stress);
+      average_stress += (w / geometry.volume) * stress;
+
+      const std::array<double, kScalarQuantities> values{pq.von_mises,       pq.max_principal_stress,
+                                                         pq.max_log_strain,  pq.max_strain_rate,
+                                                         pq.equivalent_strain_rate, pq.pressure};
+      for (int s = 0; s < kScalarQuantities; ++s) {
+        double& cell = out.cell_maximum[s][e];
+        cell = q == 0 ? values[s] : std::max(cell, values[s]);
+        if (values[s] > out.maximum[s].value)
+          out.maximum[s] = {values[s], point_positions_[k * points + q]};
+      }
+    }
+    const double vtk_order[6] = {average_stress(0, 0), average_stress(1, 1), average_stress(2, 2),
+                                 average_stress(0, 1), average_stress(1, 2), average_stress(0, 2)};
+    std::copy(vtk_order, vtk_order + 6, out.cauchy_stress.begin() + 6 * e);
+  }
+  return out;
+}
+
+}  // namespace needlefem::fields

@@ -1,0 +1,74 @@
+// Output fields of the tissue at one time, from IDA's state y = (u, Q) and its rate y'
+// (physics/mechanics/mechanics_system.hpp): the quantities of point_quantities.hpp at every
+// quadrature point of every tissue element, reduced to
+//   node fields   displacement u and velocity u' (m, m/s; zero on nodes without tissue dofs),
+//   cell fields   the Cauchy stress tensor as the element's VOLUME AVERAGE (Σ_q w_q σ_q / V_e),
+//                 every scalar quantity as the MAXIMUM over the element's quadrature points
+//                 (what safety limits are checked against; zero on non-tissue cells),
+//   maxima        per scalar quantity, the maximum over all tissue quadrature points with that
+//                 point's reference position X_q = Σ_a N_a(ξ_q) X_a,
+//   kinetic energy  T = 1/2 ρ ∫ |u'|² dV (the quasi-static model neglects it; reported to show
+//                 it is negligible next to the elastic energy).
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include <petscvec.h>
+
+#include "model/tet_mesh.hpp"
+#include "physics/material/material.hpp"
+#include "physics/mechanics/mechanics_system.hpp"
+
+namespace needlefem::fields {
+
+// The scalar quantities, in this order everywhere (cell arrays, maxima, names).
+enum ScalarQuantity {
+  kVonMises,
+  kMaxPrincipalStress,
+  kLogStrain,
+  kStrainRate,
+  kEquivalentStrainRate,
+  kPressure,
+  kScalarQuantities
+};
+struct ScalarQuantityInfo {
+  const char* name;  // field and CSV name
+  const char* unit;
+};
+const std::array<ScalarQuantityInfo, kScalarQuantities>& scalar_quantities();
+
+struct PointMaximum {
+  double value = 0.0;
+  Point3 position{};  // reference position of the quadrature point, metres
+};
+
+struct TissueFields {
+  std::vector<double> displacement;   // mesh nodes x 3
+  std::vector<double> velocity;       // mesh nodes x 3
+  std::vector<double> cauchy_stress;  // mesh tets x 6 (xx yy zz xy yz xz), volume average
+  std::array<std::vector<double>, kScalarQuantities> cell_maximum;  // mesh tets each
+  std::array<PointMaximum, kScalarQuantities> maximum;
+  double kinetic_energy = 0.0;        // J
+};
+
+class TissueFieldEvaluator {
+ public:
+  // `system` and `mesh` must outlive the evaluator; `material` is the system's material.
+  TissueFieldEvaluator(const mechanics::MechanicsSystem& system, const TetMesh& mesh,
+                       const material::Material& material, double density_kg_per_m3);
+
+  // Throws std::runtime_error for an inverted element (the integrator never accepts one).
+  TissueFields evaluate(Vec y, Vec ydot) const;
+
+ private:
+  const mechanics::MechanicsSystem& system_;
+  const TetMesh& mesh_;
+  material::Material material_;
+  double density_;
+  std::vector<std::vector<double>> shape_values_;  // per point: N_a(ξ_q)
+  std::vector<Point3> point_positions_;            // per tissue element and point
+};
+
+}  // namespace needlefem::fields

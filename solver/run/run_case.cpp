@@ -1,0 +1,263 @@
+#include "run/run_case.hpp"
+
+#include <sys/resource.h>
+
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <memory>
+#include <stdexcept>
+
+#include <fmt/core.h>
+
+#include "case/case.hpp"
+#include "integration/case_options.hpp"
+#include "integration/ida_integrator.hpp"
+#include "integration/petsc_session.hpp"
+#include "model/scene_model.hpp"
+#include "output/result_file.hpp"
+#include "physics/fields/tissue_fields.hpp"
+#include "physics/material/material.hpp"
+#include "physics/mechanics/mechanics_system.hpp"
+#include "run/output_schedule.hpp"
+
+namespace needlefem::run {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using fields::kScalarQuantities;
+constexpr double kMmPerM = 1e3;
+
+// summary.json names of the scalar quantities, in fields::ScalarQuantity order.
+constexpr std::array<const char*, kScalarQuantities> kSummaryNames{
+    "von_mises_pa", "principal_stress_pa", "log_strain", "strain_rate_per_s", "equivalent_strain_rate_per_s",
+    "pressure_pa"};
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+double peak_rss_mb() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
+}
+
+void write_json_atomically(const std::filesystem::path& file, const nlohmann::json& json) {
+  const auto partial = file.string() + ".partial";
+  {
+    std::ofstream stream(partial);
+    stream << json.dump(2) << "\n";
+    if (!stream) throw std::runtime_error("cannot write " + partial);
+  }
+  std::filesystem::rename(partial, file);
+}
+
+nlohmann::json millimetres(const Point3& x) { return {x[0] * kMmPerM, x[1] * kMmPerM, x[2] * kMmPerM}; }
+
+// The largest value seen over all output times, with when and where.
+struct MaximumOverTime {
+  double value = -std::numeric_limits<double>::infinity();
+  double time_s = 0.0;
+  Point3 position{};
+  void update(const fields::PointMaximum& m, double t) {
+    if (m.value > value) *this = {m.value, t, m.position};
+  }
+  nlohmann::json to_json() const { return {{"value", value}, {"time_s", time_s}, {"position_mm", millimetres(position)}}; }
+};
+
+// Named boundary surfaces that carry tissue dofs: the reaction-force groups.
+std::vector<std::string> reaction_surfaces(const TetMesh& mesh, const mechanics::DofMap& dofs) {
+  std::vector<std::string> names;
+  for (const auto& [name, nodes] : mesh.surface_faces)
+    for (int node : nodes)
+      if (dofs.node_dof[node] >= 0) {
+        names.push_back(name);
+        break;
+      }
+  return names;
+}
+
+std::vector<output::FieldSpec> field_specs() {
+  using output::FieldCentre, output::FieldType;
+  std::vector<output::FieldSpec> specs{{"displacement", FieldCentre::node, FieldType::vector, "m"},
+                                       {"velocity", FieldCentre::node, FieldType::vector, "m/s"},
+                                       {"cauchy_stress", FieldCentre::cell, FieldType::symmetric_tensor, "Pa"}};
+  for (const auto& q : fields::scalar_quantities()) specs.push_back({q.name, FieldCentre::cell, FieldType::scalar, q.unit});
+  for (const auto& q : fields::scalar_quantities())
+    specs.push_back({std::string("max_over_time_") + q.name, FieldCentre::cell, FieldType::scalar, q.unit});
+  return specs;
+}
+
+// One row per output time; flushed at once so a failed run keeps what it computed.
+class HistoryCsv {
+ public:
+  HistoryCsv(const std::filesystem::path& file, const std::vector<std::string>& surfaces) : stream_(file) {
+    if (!stream_) throw std::runtime_error("cannot write " + file.string());
+    stream_ << "time_s,steps,newton_iterations";
+    for (const auto& q : fields::scalar_quantities())
+      stream_ << fmt::format(",max_{0},max_{0}_x_mm,max_{0}_y_mm,max_{0}_z_mm", q.name);
+    for (const auto& s : surfaces) stream_ << fmt::format(",reaction_{0}_x_n,reaction_{0}_y_n,reaction_{0}_z_n", s);
+    stream_ << ",elastic_energy_j,kinetic_energy_j\n";
+  }
+  void row(double t, const IdaCounters& counters, const fields::TissueFields& f, const std::vector<Point3>& reactions,
+           double elastic_energy) {
+    stream_ << fmt::format("{:.9g},{},{}", t, counters.steps, counters.newton_iterations);
+    for (const auto& m : f.maximum)
+      stream_ << fmt::format(",{:.9g},{:.6g},{:.6g},{:.6g}", m.value, m.position[0] * kMmPerM,
+                             m.position[1] * kMmPerM, m.position[2] * kMmPerM);
+    for (const auto& r : reactions) stream_ << fmt::format(",{:.9g},{:.9g},{:.9g}", r[0], r[1], r[2]);
+    stream_ << fmt::format(",{:.9g},{:.9g}\n", elastic_energy, f.kinetic_energy);
+    stream_.flush();
+  }
+
+ private:
+  std::ofstream stream_;
+};
+
+// Everything summary.json reports, filled in as the run proceeds.
+struct RunRecord {
+  std::array<MaximumOverTime, kScalarQuantities> maxima;
+  std::vector<std::string> surfaces;
+  std::vector<Point3> reactions;  // at the last completed output time
+  double time_reached_s = 0.0;
+  std::size_t output_times_written = 0;
+  double elastic_energy_j = 0.0;
+  double max_kinetic_to_elastic = 0.0;
+  IdaCounters counters;
+  long dofs = 0, displacement_dofs = 0;
+  double mesh_s = 0.0, integration_s = 0.0, output_s = 0.0;
+};
+
+nlohmann::json summary_json(const Case& c, const material::Material* material, const SceneModel* scene,
+                            const RunRecord& record, double wall_s) {
+  nlohmann::json s;
+  s["case_file"] = c.origin();
+  s["status"] = "completed";
+  s["time_reached_s"] = record.time_reached_s;
+  s["output_times"] = record.output_times_written;
+  for (int q = 0; q < kScalarQuantities; ++q)
+    if (std::isfinite(record.maxima[q].value)) s["max"][kSummaryNames[q]] = record.maxima[q].to_json();
+  s["max_note"] = "maximum over all tissue quadrature points and output times; position_mm is the point's "
+                  "reference (undeformed) position";
+  for (std::size_t i = 0; i < record.reactions.size(); ++i) {
+    const Point3& r = record.reactions[i];
+    s["reactions"][record.surfaces[i]] = {r[0], r[1], r[2]};
+  }
+  s["reactions_note"] = "force (N) the supports exert on the tissue nodes of each named surface, at time_reached_s";
+  s["energy"] = {{"elastic_j", record.elastic_energy_j}, {"max_kinetic_to_elastic_ratio", record.max_kinetic_to_elastic},
+                 {"density_kg_per_m3", c.real("output.density_kg_per_m3")}};
+  s["solver"] = {{"wall_s", wall_s},
+                 {"mesh_s", record.mesh_s},
+                 {"integration_s", record.integration_s},
+                 {"output_s", record.output_s},
+                 {"steps", record.counters.steps},
+                 {"newton_iterations", record.counters.newton_iterations},
+                 {"jacobian_setups", record.counters.jacobian_setups},
+                 {"residual_evaluations", record.counters.residual_evaluations},
+                 {"error_test_failures", record.counters.error_test_failures},
+                 {"newton_convergence_failures", record.counters.newton_convergence_failures},
+                 {"linear_iterations", record.counters.linear_iterations},
+                 {"dofs", record.dofs},
+                 {"displacement_dofs", record.displacement_dofs},
+                 {"peak_rss_mb", peak_rss_mb()}};
+  if (material) s["material"] = {{"name", material->name()}, {"description", material->description()}};
+  if (scene)
+    s["mesh"] = {{"nodes", scene->mesh.nodes.size()},
+                 {"tets", scene->mesh.tet_count()},
+                 {"element", scene->mesh.nodes_per_tet == 10 ? "TET10" : "TET4"},
+                 {"msh_file", scene->msh_file.string()}};
+  s["files"] = {{"result", "result.h5"}, {"xdmf", "result.xdmf"}, {"history", "history.csv"}};
+  s["case"] = c.to_json();
+  return s;
+}
+
+void print_progress(std::FILE* stream, double t, double end, const IdaCounters& k, double integration_s) {
+  if (!stream) return;
+  const double eta = t > 0.0 ? integration_s * (end - t) / t : 0.0;
+  fmt::print(stream, "run: t = {:.4g} s ({:3.0f}%)  steps {}  Newton its {}  Jacobians {}  wall {:.1f} s  ETA {:.1f} s\n",
+             t, end > 0.0 ? 100.0 * t / end : 100.0, k.steps, k.newton_iterations, k.jacobian_setups, integration_s,
+             eta);
+  std::fflush(stream);
+}
+
+}  // namespace
+
+nlohmann::json run_case(const Case& c, const RunOptions& options) {
+  const auto start = Clock::now();
+  std::filesystem::create_directories(options.out_dir);
+  const auto summary_file = options.out_dir / "summary.json";
+  std::filesystem::remove(summary_file);  // a stale summary must not describe this run
+
+  RunRecord record;
+  std::unique_ptr<SceneModel> scene;
+  std::unique_ptr<material::Material> material;
+  try {
+    scene = std::make_unique<SceneModel>(load_scene_model(c, options.out_dir));
+    require_valid_elements(*scene);
+    record.mesh_s = seconds_since(start);
+    const TetMesh& mesh = scene->mesh;
+
+    const PetscSession petsc(options.petsc_options);
+    material = std::make_unique<material::Material>(material::material_from_case(c));
+    const auto system = mechanics::MechanicsSystem::from_case(c, mesh);
+    record.dofs = system->local_size();
+    record.displacement_dofs = system->displacement_dofs();
+    record.surfaces = reaction_surfaces(mesh, system->dof_map());
+    const fields::TissueFieldEvaluator evaluator(*system, mesh, *material, c.real("output.density_kg_per_m3"));
+
+    const std::vector<double> times = output_times(c);
+    output::ResultFile file(options.out_dir / "result.h5", mesh, c.to_toml(), field_specs(), times.size());
+    HistoryCsv history(options.out_dir / "history.csv", record.surfaces);
+    std::array<std::vector<double>, kScalarQuantities> max_over_time;
+    for (auto& cells : max_over_time) cells.assign(mesh.tet_count(), 0.0);
+
+    IdaIntegrator integrator(*system, ida_options_from_case(c), times.front(), PETSC_COMM_SELF);
+    double integration_s = 0.0;
+    for (const double t : times) {
+      const auto step_start = Clock::now();
+      if (t > integrator.time()) integrator.advance_to(t);
+      integration_s += seconds_since(step_start);
+
+      const auto output_start = Clock::now();
+      const fields::TissueFields f = evaluator.evaluate(integrator.state(), integrator.state_rate());
+      std::vector<std::span<const double>> values{f.displacement, f.velocity, f.cauchy_stress};
+      for (const auto& cells : f.cell_maximum) values.emplace_back(cells);
+      for (int q = 0; q < kScalarQuantities; ++q) {
+        for (std::size_t e = 0; e < mesh.tet_count(); ++e)
+          max_over_time[q][e] = std::max(max_over_time[q][e], f.cell_maximum[q][e]);
+        values.emplace_back(max_over_time[q]);
+        record.maxima[q].update(f.maximum[q], t);
+      }
+      file.append_time(t, values);
+
+      record.reactions.clear();
+      for (const auto& s : record.surfaces) record.reactions.push_back(system->reaction_force(integrator.state(), s));
+      record.elastic_energy_j = system->elastic_energy(integrator.state());
+      if (record.elastic_energy_j > 0.0)
+        record.max_kinetic_to_elastic = std::max(record.max_kinetic_to_elastic, f.kinetic_energy / record.elastic_energy_j);
+      record.counters = integrator.counters();
+      history.row(t, record.counters, f, record.reactions, record.elastic_energy_j);
+      record.time_reached_s = t;
+      record.output_times_written = file.completed_times();
+      record.output_s += seconds_since(output_start);
+      record.integration_s = integration_s;
+      print_progress(options.progress, t, times.back(), record.counters, integration_s);
+    }
+    file.close();
+  } catch (const std::exception& e) {
+    nlohmann::json failed = summary_json(c, material.get(), scene.get(), record, seconds_since(start));
+    failed["status"] = "failed";
+    failed["error"] = e.what();
+    write_json_atomically(summary_file, failed);
+    throw;
+  }
+  const nlohmann::json summary = summary_json(c, material.get(), scene.get(), record, seconds_since(start));
+  write_json_atomically(summary_file, summary);
+  return summary;
+}
+
+}  // namespace needlefem::run

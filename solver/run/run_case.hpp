@@ -1,0 +1,34 @@
+// `needlefem run`: one case from start to finish.
+//   mesh (model/scene_model) -> MechanicsSystem (physics/mechanics) -> IdaIntegrator advancing
+//   to every output time (run/output_schedule) -> at each time the tissue fields
+//   (physics/fields) appended to DIR/result.h5 + .xdmf, a row of DIR/history.csv (per-time
+//   maxima with positions, reaction force per named boundary surface, elastic and kinetic
+//   energy) and a progress line on `progress`; finally DIR/summary.json (written atomically).
+// A failure (IDA giving up, an inverted element) leaves every completed output time readable
+// in result.h5/.xdmf and history.csv, writes summary.json with "status": "failed" and the
+// reason, and rethrows.
+#pragma once
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace needlefem {
+class Case;
+}
+
+namespace needlefem::run {
+
+struct RunOptions {
+  std::filesystem::path out_dir;
+  std::vector<std::string> petsc_options;  // passed unchanged to PETSc (e.g. -nf_ksp_type gmres)
+  std::FILE* progress = stderr;            // one line per output time; nullptr for none
+};
+
+// Returns the summary written to out_dir/summary.json.
+nlohmann::json run_case(const Case& c, const RunOptions& options);
+
+}  // namespace needlefem::run
