@@ -3,6 +3,7 @@
 //   DIR/mesh.h5 + .xdmf   the mesh with per-tet region, scaled Jacobian, radius ratio, partition
 //   DIR/mesh_report.json  counts per region, Jacobian and quality ranges, tip and cavity volumes,
 //                         METIS partition effect, timings, and the resolved case.
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 
@@ -35,16 +36,16 @@ nlohmann::json mesh_report(const Case& c, const SceneModel& scene, const Partiti
   report["element"] = mesh.nodes_per_tet == 10 ? "TET10" : "TET4";
   report["nodes"] = mesh.nodes.size();
   report["tets"] = mesh.tet_count();
-  std::size_t tissue_nodes = 0;
-  for (const auto& [name, q] : scene.quality.regions) {
-    report["regions"][name] = to_json(q);
-    if (name.rfind("tissue", 0) == 0) tissue_nodes += q.nodes;  // core/outer share interface nodes: an upper bound
-  }
+  for (const auto& [name, q] : scene.quality.regions) report["regions"][name] = to_json(q);
   report["inverted_tets"] = scene.quality.inverted();
   for (const auto& [name, faces] : mesh.surface_faces)
     report["surfaces"][name] = faces.size() / static_cast<std::size_t>(mesh.nodes_per_face());
-  report["dof_estimate"] = {{"displacement", 3 * tissue_nodes},
-                            {"note", "3 x tissue nodes (upper bound: core/outer interface nodes counted twice)"}};
+  std::vector<char> in_tissue(mesh.nodes.size(), 0);
+  for (std::size_t e = 0; e < mesh.tet_count(); ++e)
+    if (mesh.region_names[mesh.tet_region[e]].rfind("tissue", 0) == 0)
+      for (int k = 0; k < mesh.nodes_per_tet; ++k) in_tissue[mesh.tet(e)[k]] = 1;
+  const auto tissue_nodes = static_cast<std::size_t>(std::count(in_tissue.begin(), in_tissue.end(), 1));
+  report["dof_estimate"] = {{"tissue_nodes", tissue_nodes}, {"displacement", 3 * tissue_nodes}};
 
   const double tissue_volume = scene.quality.volume_of_regions_starting_with("tissue");
   if (!scene.info.needle_description.empty()) {

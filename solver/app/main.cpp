@@ -24,6 +24,9 @@ void CaseOptions::add_to(CLI::App& command, const std::string& default_out) {
   command.add_option("--set", overrides, "Override a case key, e.g. --set needle.radius_mm=0.83")
       ->type_name("KEY=VALUE");
   command.add_option("--out", out_dir, "Output directory")->capture_default_str();
+  std::string keys = "\nCase keys (type, range, default; units are in the names):\n";
+  for (const auto& spec : case_schema()) keys += "  " + describe_key(spec) + "\n";
+  command.footer(keys);
 }
 
 }  // namespace needlefem::app
@@ -52,6 +55,8 @@ int main(int argc, char** argv) {
   app::add_material_test_command(cli);
   app::add_magnet_command(cli);
   app::add_replay_command(cli);
+  app::add_steer_command(cli);
+  app::add_run_command(cli);
 
   try {
     std::vector<std::string> reversed(own.rbegin(), own.rend());
