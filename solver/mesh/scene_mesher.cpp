@@ -221,6 +221,7 @@ SceneMeshInfo mesh_brain_tip(const Case& c, const std::filesystem::path& msh_fil
   }
   for (int s : needle_surfaces)
     if (box_face_of(s, lo, hi) == "z_min") groups["needle_rear"].push_back(s);
+  if (c.flag("needle.mesh_volume")) groups["needle_surface"] = needle_surfaces;
   if (groups["cavity"].empty() || groups["entry"].empty() || groups["needle_rear"].empty())
     throw std::runtime_error("gmsh: could not identify the cavity, entry and needle-rear surfaces");
   for (const auto& [name, tags] : groups) add_physical(2, tags, name);

@@ -5,7 +5,8 @@
 //   volumes  "tissue_core", "tissue_outer" (brain-tip) or "tissue" (block); "needle" (optional)
 //   surfaces brain-tip: "entry" (z = 0 face of the tissue), "x_min" "x_max" "y_min" "y_max"
 //            "z_max" (the five skull-fixed faces), "fixed" (their union), "cavity" (tissue
-//            faces touching the needle tip), "needle_rear" (rear face of the tip, z = 0)
+//            faces touching the needle tip), "needle_rear" (rear face of the tip, z = 0),
+//            "needle_surface" (the whole boundary of the meshed tip, when needle.mesh_volume)
 //            block: "x_min" ... "z_max"
 #pragma once
 

@@ -120,18 +120,28 @@ TetMesh read_msh(const std::filesystem::path& file) {
     }
   for (int& p : mesh.tet_nodes) p = index_of[p];
 
-  // Every tet face, tissue faces first, to orient boundary faces outward of their owner.
-  std::unordered_map<FaceKey, std::size_t, FaceKeyHash> owner;
-  static const int face_corners[4][3] = {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {1, 2, 3}};
-  for (int pass = 0; pass < 2; ++pass)
-    for (std::size_t e = 0; e < mesh.tet_count(); ++e) {
-      if (is_tissue(mesh.region_names[mesh.tet_region[e]]) != (pass == 0)) continue;
-      const int* t = mesh.tet(e);
-      for (const auto& f : face_corners) owner.emplace(key_of(t[f[0]], t[f[1]], t[f[2]]), e);
-    }
+  // Every tet face, with its owner tet: tissue tets first (faces are oriented outward of the
+  // tissue), or needle tets first for surfaces named "needle*" (outward of the needle).
+  using FaceOwners = std::unordered_map<FaceKey, std::size_t, FaceKeyHash>;
+  auto owners_preferring = [&](bool tissue_first) {
+    FaceOwners owner;
+    static const int face_corners[4][3] = {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {1, 2, 3}};
+    for (int pass = 0; pass < 2; ++pass)
+      for (std::size_t e = 0; e < mesh.tet_count(); ++e) {
+        if (is_tissue(mesh.region_names[mesh.tet_region[e]]) != ((pass == 0) == tissue_first)) continue;
+        const int* t = mesh.tet(e);
+        for (const auto& f : face_corners) owner.emplace(key_of(t[f[0]], t[f[1]], t[f[2]]), e);
+      }
+    return owner;
+  };
+  const FaceOwners tissue_owner = owners_preferring(true);
+  FaceOwners needle_owner;
   const int per_face = mesh.nodes_per_face();
   for (auto& [name, tags] : surfaces) {
     std::vector<int>& faces = mesh.surface_faces[name];
+    const bool needle_side = name.rfind("needle", 0) == 0;
+    if (needle_side && needle_owner.empty()) needle_owner = owners_preferring(false);
+    const FaceOwners& owner = needle_side ? needle_owner : tissue_owner;
     for (std::size_t f = 0; f + per_face <= tags.size(); f += per_face) {
       std::array<int, 6> v{};
       for (int k = 0; k < per_face; ++k) {

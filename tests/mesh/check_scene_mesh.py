@@ -7,6 +7,9 @@
 - every named surface a later stage needs is present;
 - the mesh written to HDF5 for ParaView (VTK node order) has, tet by tet, the volume that the
   report computed from the .msh (gmsh order), integrated here independently with numpy;
+- the named surfaces are complete and oriented outward: by the divergence theorem the flux of x
+  through the tissue boundary (entry + fixed + cavity; or the six block faces) and through
+  needle_surface, divided by 3, equals the region volumes (TRI6 integrated exactly, degree 5);
 - optionally: the same case meshed twice gives the same mesh (determinism), and
   the generated .msh fed back as scene.mesh_file gives the same mesh (user-supplied meshes).
 """
@@ -20,7 +23,8 @@ import h5py
 import numpy as np
 
 REQUIRED_SURFACES = {
-    "brain-tip": ["entry", "fixed", "cavity", "needle_rear", "x_min", "x_max", "y_min", "y_max", "z_max"],
+    "brain-tip": ["entry", "fixed", "cavity", "needle_rear", "needle_surface", "x_min", "x_max", "y_min", "y_max",
+                  "z_max"],
     "block": ["x_min", "x_max", "y_min", "y_max", "z_min", "z_max"],
 }
 
@@ -76,6 +80,30 @@ def tet10_volumes_vtk_order(points, cells):
     return volumes
 
 
+def enclosed_volume(points, faces):
+    """(1/3) * flux of the position vector through TRI6/TRI3 faces (gmsh order 0 1 2 (01) (12) (20)):
+    x . (dx/dxi x dx/deta) is a degree-4 polynomial on TRI6, so the 7-point degree-5 rule is exact."""
+    a, b, c, d = 0.059715871789770, 0.470142064105115, 0.797426985353087, 0.101286507323456
+    rule = [((1 / 3, 1 / 3), 0.225)] + [((p, q), 0.132394152788506) for p, q in ((a, b), (b, a), (b, b))] + \
+           [((p, q), 0.125939180544827) for p, q in ((c, d), (d, c), (d, d))]
+    x = points[faces]
+    total = 0.0
+    for (u, v), w in rule:
+        L = np.array([1 - u - v, u, v])
+        dL = np.array([[-1, -1], [1, 0], [0, 1]], dtype=float)
+        if faces.shape[1] == 6:
+            dN = np.vstack([(4 * L[i] - 1) * dL[i] for i in range(3)] +
+                           [4 * (dL[i] * L[j] + L[i] * dL[j]) for i, j in ((0, 1), (1, 2), (2, 0))])
+            N = np.concatenate([L * (2 * L - 1), [4 * L[0] * L[1], 4 * L[1] * L[2], 4 * L[2] * L[0]]])
+        else:
+            dN, N = dL, L
+        pos = np.einsum("fnk,n->fk", x, N)
+        tangents = np.einsum("fnk,nj->fkj", x, dN)
+        normal = np.cross(tangents[:, :, 0], tangents[:, :, 1])
+        total += 0.5 * w * np.einsum("fk,fk->", pos, normal)
+    return total / 3
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--exe", required=True)
@@ -113,6 +141,19 @@ def main():
             reported = report["regions"][name]["volume_mm3"]
             check(abs(written - reported) <= 1e-10 * reported,
                   f"region {name}: written-mesh volume {written:.12g} mm^3 = report {reported:.12g} mm^3")
+
+    with h5py.File(args.out / "mesh.h5", "r") as f:
+        surfaces = {name: f["/mesh/surfaces"][name][...] for name in f["/mesh/surfaces"]}
+    tissue_boundary = ["entry", "fixed", "cavity"] if scene == "brain-tip" else REQUIRED_SURFACES["block"]
+    tissue_volume = sum(q["volume_mm3"] for name, q in report["regions"].items() if name.startswith("tissue"))
+    enclosed = enclosed_volume(points, np.vstack([surfaces[n] for n in tissue_boundary])) * 1e9
+    check(abs(enclosed - tissue_volume) <= 1e-9 * tissue_volume,
+          f"tissue boundary is closed and outward: flux volume {enclosed:.12g} = tissue {tissue_volume:.12g} mm^3")
+    if "needle_surface" in surfaces:
+        needle_volume = report["regions"]["needle"]["volume_mm3"]
+        enclosed = enclosed_volume(points, surfaces["needle_surface"]) * 1e9
+        check(abs(enclosed - needle_volume) <= 1e-9 * needle_volume,
+              f"needle_surface is closed and outward: flux volume {enclosed:.12g} = needle {needle_volume:.12g} mm^3")
 
     if args.determinism:
         again = args.out.parent / (args.out.name + "_again")
