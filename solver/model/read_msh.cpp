@@ -36,6 +36,39 @@ FaceKey key_of(int a, int b, int c) {
 
 bool is_tissue(const std::string& region) { return region.rfind("tissue", 0) == 0; }
 
+// The elements of one physical group of the open gmsh model, per element type.
+struct ElementBlock {
+  int type;
+  std::size_t count;
+  std::vector<std::size_t> node_tags;
+};
+struct PhysicalGroup {
+  std::string name;
+  std::vector<ElementBlock> blocks;
+};
+
+std::vector<PhysicalGroup> physical_groups(int dim, const std::string& unnamed_prefix) {
+  std::vector<PhysicalGroup> out;
+  gmsh::vectorpair groups;
+  gmsh::model::getPhysicalGroups(groups, dim);
+  for (const auto& [group_dim, tag] : groups) {
+    PhysicalGroup group;
+    gmsh::model::getPhysicalName(group_dim, tag, group.name);
+    if (group.name.empty()) group.name = fmt::format("{}_{}", unnamed_prefix, tag);
+    std::vector<int> entities;
+    gmsh::model::getEntitiesForPhysicalGroup(group_dim, tag, entities);
+    for (int entity : entities) {
+      std::vector<int> types;
+      std::vector<std::vector<std::size_t>> element_tags, node_tags;
+      gmsh::model::mesh::getElements(types, element_tags, node_tags, group_dim, entity);
+      for (std::size_t t = 0; t < types.size(); ++t)
+        group.blocks.push_back({types[t], element_tags[t].size(), std::move(node_tags[t])});
+    }
+    out.push_back(std::move(group));
+  }
+  return out;
+}
+
 }  // namespace
 
 TetMesh read_msh(const std::filesystem::path& file) {
@@ -51,49 +84,27 @@ TetMesh read_msh(const std::filesystem::path& file) {
     gmsh::open(file.string());
     std::vector<double> parametric;
     gmsh::model::mesh::getNodes(all_node_tags, all_coords, parametric, -1, -1, false, false);
-    gmsh::vectorpair groups;
-    gmsh::model::getPhysicalGroups(groups, 3);
-    for (const auto& [dim, group] : groups) {
-      std::string name;
-      gmsh::model::getPhysicalName(dim, group, name);
-      if (name.empty()) name = fmt::format("volume_{}", group);
+    for (const auto& group : physical_groups(3, "volume")) {
       const int region = static_cast<int>(mesh.region_names.size());
-      mesh.region_names.push_back(name);
-      std::vector<int> entities;
-      gmsh::model::getEntitiesForPhysicalGroup(dim, group, entities);
-      for (int entity : entities) {
-        std::vector<int> types;
-        std::vector<std::vector<std::size_t>> element_tags, node_tags;
-        gmsh::model::mesh::getElements(types, element_tags, node_tags, 3, entity);
-        for (std::size_t t = 0; t < types.size(); ++t) {
-          if (types[t] != kGmshTet10 && types[t] != kGmshTet4)
-            throw fail(fmt::format("region '{}' has gmsh element type {}; only 4- and 10-node tetrahedra are supported",
-                                   name, types[t]));
-          if (element_type && element_type != types[t]) throw fail("mixes 4- and 10-node tetrahedra");
-          element_type = types[t];
-          for (std::size_t tag : node_tags[t]) mesh.tet_nodes.push_back(static_cast<int>(tag));
-          mesh.tet_region.insert(mesh.tet_region.end(), element_tags[t].size(), region);
-        }
+      mesh.region_names.push_back(group.name);
+      for (const auto& [type, count, nodes] : group.blocks) {
+        if (type != kGmshTet10 && type != kGmshTet4)
+          throw fail(fmt::format("region '{}' has gmsh element type {}; only 4- and 10-node tetrahedra are supported",
+                                 group.name, type));
+        if (element_type && element_type != type) throw fail("mixes 4- and 10-node tetrahedra");
+        element_type = type;
+        for (std::size_t tag : nodes) mesh.tet_nodes.push_back(static_cast<int>(tag));
+        mesh.tet_region.insert(mesh.tet_region.end(), count, region);
       }
     }
-    gmsh::model::getPhysicalGroups(groups, 2);
-    for (const auto& [dim, group] : groups) {
-      std::string name;
-      gmsh::model::getPhysicalName(dim, group, name);
-      std::vector<int> entities;
-      gmsh::model::getEntitiesForPhysicalGroup(dim, group, entities);
+    for (const auto& group : physical_groups(2, "surface")) {
       std::vector<std::size_t> face_nodes;
-      for (int entity : entities) {
-        std::vector<int> types;
-        std::vector<std::vector<std::size_t>> element_tags, node_tags;
-        gmsh::model::mesh::getElements(types, element_tags, node_tags, 2, entity);
-        for (std::size_t t = 0; t < types.size(); ++t) {
-          if (types[t] != kGmshTri3 && types[t] != kGmshTri6)
-            throw fail(fmt::format("surface '{}' has gmsh element type {}; expected triangles", name, types[t]));
-          face_nodes.insert(face_nodes.end(), node_tags[t].begin(), node_tags[t].end());
-        }
+      for (const auto& [type, count, nodes] : group.blocks) {
+        if (type != kGmshTri3 && type != kGmshTri6)
+          throw fail(fmt::format("surface '{}' has gmsh element type {}; expected triangles", group.name, type));
+        face_nodes.insert(face_nodes.end(), nodes.begin(), nodes.end());
       }
-      surfaces.emplace_back(name.empty() ? fmt::format("surface_{}", group) : name, std::move(face_nodes));
+      surfaces.emplace_back(group.name, std::move(face_nodes));
     }
   } catch (const std::string& message) {
     throw fail("gmsh: " + message);
