@@ -55,7 +55,6 @@ int main(int argc, char** argv) {
   app::add_material_test_command(cli);
   app::add_magnet_command(cli);
   app::add_replay_command(cli);
-  app::add_run_command(cli);
   app::add_steer_command(cli);
   app::add_run_command(cli);
 

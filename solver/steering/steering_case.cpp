@@ -1,0 +1,103 @@
+// Case keys -> steering problem (SI); the rules are listed in steering_case.hpp.
+#include "steering/steering_case.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+namespace needlefem::steering {
+
+namespace {
+
+constexpr double mm = 1e-3;
+constexpr double deg = std::numbers::pi / 180.0;
+
+std::vector<double> scaled(std::vector<double> values, double factor) {
+  for (double& v : values) v *= factor;
+  return values;
+}
+
+Vec3 vec3(const std::vector<double>& values, double factor) {
+  return {values[0] * factor, values[1] * factor, values[2] * factor};
+}
+
+MagnetSchedule schedule_from_case(const Case& input, const SteeringModel& model, double speed_m_per_s) {
+  const bool by_depth = input.has("steering.schedule_depth_mm");
+  const bool by_time = input.has("steering.schedule_time_s");
+  const bool tables = input.has("steering.magnet_distance_mm") || input.has("steering.pull_azimuth_deg");
+  if (by_depth && by_time)
+    throw input.error("steering.schedule_time_s", "give the schedule against depth or against time, not both");
+  if (!by_depth && !by_time) {
+    if (tables)
+      throw input.error("steering.schedule_depth_mm",
+                        "magnet tables need a schedule axis (schedule_depth_mm or schedule_time_s)");
+    return {};
+  }
+  const std::string axis_key = by_depth ? "steering.schedule_depth_mm" : "steering.schedule_time_s";
+  const std::vector<double> axis = input.reals(axis_key);
+  for (const char* key : {"steering.magnet_distance_mm", "steering.pull_azimuth_deg"}) {
+    if (!input.has(key)) throw input.error(key, fmt::format("required with {}", axis_key));
+    if (input.reals(key).size() != axis.size())
+      throw input.error(key, fmt::format("has {} entries but {} has {}", input.reals(key).size(), axis_key,
+                                         axis.size()));
+  }
+  for (std::size_t i = 1; i < axis.size(); ++i)
+    if (!(axis[i] > axis[i - 1]))
+      throw input.error(axis_key, fmt::format("must increase strictly: entry {} ({}) follows {}", i + 1, axis[i],
+                                              axis[i - 1]));
+
+  MagnetSchedule schedule;
+  schedule.depth_m = by_depth ? scaled(axis, mm) : scaled(axis, speed_m_per_s);
+  schedule.magnet_distance_m = scaled(input.reals("steering.magnet_distance_mm"), mm);
+  schedule.pull_azimuth_rad = scaled(input.reals("steering.pull_azimuth_deg"), deg);
+  // B(x) falls monotonically with x, so between entries the angle lies between the entries' angles.
+  for (std::size_t i = 0; i < axis.size(); ++i) {
+    try {
+      model.head_load(schedule.magnet_distance_m[i]);
+    } catch (const std::domain_error& e) {
+      throw input.error("steering.magnet_distance_mm", fmt::format("entry {}: {}", i + 1, e.what()));
+    }
+  }
+  return schedule;
+}
+
+}  // namespace
+
+SteeringSetup steering_setup_from_case(const Case& input) {
+  SteeringSetup setup;
+  SteeringModel& model = setup.model;
+  model.hinge = {input.real("needle.neck_length_mm") * mm, input.real("needle.neck_diameter_mm") * mm,
+                 input.real("needle.head_length_mm") * mm, input.real("steering.neck_youngs_modulus_gpa") * 1e9,
+                 input.real("steering.tissue_spring_constant_n_per_m2")};
+  model.magnet = {input.real("steering.magnet_residual_flux_density_t"), input.real("steering.magnet_pole_width_mm") * mm,
+                  input.real("steering.magnet_pole_length_mm") * mm, input.real("steering.magnet_thickness_mm") * mm,
+                  input.real("steering.magnet_correction_factor")};
+  model.force_angle_rad = input.real("steering.force_angle_deg") * deg;
+  model.max_turning_angle_rad = input.real("steering.max_turning_angle_deg") * deg;
+
+  SteeringRun& run = setup.run;
+  run.insertion_depth_m = input.real("steering.insertion_depth_mm") * mm;
+  run.depth_step_m = input.real("steering.depth_step_mm") * mm;
+  run.insertion_speed_m_per_s = input.real("steering.insertion_speed_mm_per_s") * mm;
+  setup.schedule = schedule_from_case(input, model, run.insertion_speed_m_per_s);
+
+  const Vec3 block = vec3(input.reals("steering.block_size_mm"), mm);
+  ObstacleScene& scene = setup.scene;
+  scene.block_min_m = {-0.5 * block[0], -0.5 * block[1], 0.0};
+  scene.block_max_m = {0.5 * block[0], 0.5 * block[1], block[2]};
+  scene.obstacle_centre_m = {0.0, 0.0, 0.5 * block[2]};
+  scene.obstacle_radius_m = input.real("steering.obstacle_radius_mm") * mm;
+  scene.target_m = vec3(input.reals("steering.target_mm"), mm);
+  scene.needle_radius_m = input.real("needle.radius_mm") * mm;
+  if (2.0 * scene.obstacle_radius_m >= std::min({block[0], block[1], block[2]}))
+    throw input.error("steering.obstacle_radius_mm", "the obstacle does not fit inside the block");
+  setup.target_tolerance_m = input.real("steering.target_tolerance_mm") * mm;
+  return setup;
+}
+
+}  // namespace needlefem::steering
