@@ -69,6 +69,8 @@ MagnetSchedule schedule_from_case(const Case& input, const SteeringModel& model,
 }  // namespace
 
 SteeringSetup steering_setup_from_case(const Case& input) {
+  if (input.text("needle.kind") != "compliant")
+    throw input.error("needle.kind", "steering needs the compliant (hinged, magnetised) needle: set \"compliant\"");
   SteeringSetup setup;
   SteeringModel& model = setup.model;
   model.hinge = {input.real("needle.neck_length_mm") * mm, input.real("needle.neck_diameter_mm") * mm,

@@ -22,6 +22,11 @@
 // simulate_steering advances each depth step exactly along that arc, with theta and n taken at
 // the step's mid-depth, so constant schedules are integrated without discretisation error.
 //
+// A change of theta turns the head about the pivot in place: the tip swings sideways by
+// a (sin(theta_new) - sin(theta_old)), as the paper's static turning stage does (Section 2.1);
+// with the PRBM spring the head also swings back when the magnet releases it. The recorded tip
+// path contains these swings, and the obstacle clearance checks the head at every sample.
+//
 // theta comes from the magnet: the schedule gives the magnet distance x (pole axis through the
 // head) and the pull direction; Eq. 2.3 gives B(x), Eq. 2.1-2.2 the pull F = B^2 A_g / (2 mu0)
 // and Eq. 2.7 the turning angle with the neck stiffness (E I)_l / l and the tissue term mu_t.

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include "case/case.hpp"
+#include "steering/steering_case.hpp"
 #include "steering/steering_path.hpp"
 
 namespace needlefem::steering {
@@ -106,6 +108,27 @@ TEST(SteeringScene, StraightPathThroughTheObstacleCentre) {
   EXPECT_NEAR(outcome.closest_approach_m, 0.003, 1e-15);
   EXPECT_NEAR(outcome.miss_distance_m, std::hypot(0.003, 0.002), 1e-15);
   EXPECT_TRUE(outcome.tip_stays_in_block);
+}
+
+// A schedule against time is the same schedule against depth = speed * time.
+TEST(SteeringCase, TimeScheduleMapsToDepthThroughTheInsertionSpeed) {
+  const Case input = Case::parse(R"([needle]
+kind = "compliant"
+[steering]
+insertion_speed_mm_per_s = 2.0
+schedule_time_s = [0.0, 5.0, 7.5]
+magnet_distance_mm = [300.0, 50.0, 60.0]
+pull_azimuth_deg = [0.0, 90.0, 90.0]
+)",
+                                 "time_schedule.toml");
+  const SteeringSetup setup = steering_setup_from_case(input);
+  ASSERT_EQ(setup.schedule.depth_m.size(), 3u);
+  EXPECT_NEAR(setup.schedule.depth_m[1], 0.010, 1e-15);
+  EXPECT_NEAR(setup.schedule.depth_m[2], 0.015, 1e-15);
+  EXPECT_NEAR(setup.schedule.distance_at(0.0125), 0.055, 1e-15);
+  EXPECT_NEAR(setup.schedule.azimuth_at(0.005), std::numbers::pi / 4, 1e-15);
+  EXPECT_NEAR(setup.model.tip_lever_m(), 4.0e-3, 1e-15);
+  EXPECT_NEAR(setup.scene.obstacle_centre_m[2], 0.020, 1e-15);
 }
 
 }  // namespace
