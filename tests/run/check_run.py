@@ -1,0 +1,163 @@
+#!/usr/bin/env python3
+"""Runs `needlefem run` on a case and checks its outputs (summary.json, history.csv, result.h5).
+
+  block      homogeneous uniaxial tension of an incompressible polynomial solid against closed
+             forms: lambda(t) = 1 + 0.2 t (1 s ramp), I1 = l^2 + 2/l, I2 = 2 l + 1/l^2,
+             W1 = C10 + 2 C20 (I1 - 3) + C11 (I2 - 3), W2 = C01 + 2 C02 (I2 - 3) + C11 (I1 - 3),
+             Cauchy sigma = 2 (l^2 - 1/l) (W1 + W2 / l) (Holzapfel 2000 §7.2), which is also the
+             von Mises and the max principal stress; max principal ln V = ln l; strain rate
+             D_xx = d ln l / dt = 0.2 / l (equivalent rate the same for isochoric stretching);
+             reaction on x_max = nominal stress sigma / l times the undeformed area.
+  brain-tip  coarse paper-001 cube: summary keys, signs of the reactions (the needle pushes the
+             tissue along +z), global balance cavity + fixed = 0, fields in the HDF5 file.
+  failure    an inverting block: non-zero exit, exactly one error line, summary status
+             "failed", and the output times completed before the failure readable.
+"""
+import argparse
+import csv
+import json
+import math
+import pathlib
+import shutil
+import subprocess
+import sys
+
+import h5py
+
+C10, C01, C20, C11, C02 = 263.0, 263.0, 491.0, 0.0, 491.0
+RATE = 0.2  # 1/s, engineering strain rate of the block ramp
+AREA = 1e-6  # m^2, undeformed cross-section of the 1 mm block
+
+FIELDS = ["displacement", "velocity", "cauchy_stress", "von_mises", "max_principal_stress", "log_strain",
+          "strain_rate", "equivalent_strain_rate", "pressure", "max_over_time_von_mises",
+          "max_over_time_log_strain", "max_over_time_strain_rate"]
+SUMMARY_MAXIMA = ["log_strain", "strain_rate_per_s", "von_mises_pa", "principal_stress_pa"]
+SOLVER_KEYS = ["wall_s", "steps", "newton_iterations", "jacobian_setups", "dofs", "peak_rss_mb"]
+
+failures = []
+
+
+def check(condition, message):
+    print(("ok   " if condition else "FAIL ") + message)
+    if not condition:
+        failures.append(message)
+
+
+def close(value, reference, rel, what):
+    error = abs(value - reference) / abs(reference)
+    check(error <= rel, f"{what}: {value:.9g} vs {reference:.9g} (rel. error {error:.2e} <= {rel:g})")
+
+
+def run(exe, case, out, extra):
+    shutil.rmtree(out, ignore_errors=True)
+    return subprocess.run([exe, "run", case, "--out", str(out)] + extra, capture_output=True, text=True)
+
+
+def uniaxial_cauchy(l):
+    i1, i2 = l * l + 2 / l, 2 * l + 1 / (l * l)
+    w1 = C10 + 2 * C20 * (i1 - 3) + C11 * (i2 - 3)
+    w2 = C01 + 2 * C02 * (i2 - 3) + C11 * (i1 - 3)
+    return 2 * (l * l - 1 / l) * (w1 + w2 / l)
+
+
+def history(out):
+    with open(out / "history.csv") as f:
+        return list(csv.DictReader(f))
+
+
+def check_common(out, summary, times):
+    for key in SUMMARY_MAXIMA:
+        entry = summary["max"][key]
+        check(all(k in entry for k in ("value", "time_s", "position_mm")) and len(entry["position_mm"]) == 3,
+              f"summary max.{key} has value, time_s, position_mm")
+    for key in SOLVER_KEYS:
+        check(key in summary["solver"] and summary["solver"][key] > 0, f"summary solver.{key} > 0")
+    check(summary["material"]["name"] != "", f"summary names the material ({summary['material']['name']})")
+    check("case" in summary and summary["status"] == "completed", "summary has the resolved case, completed")
+    with h5py.File(out / "result.h5", "r") as h5:
+        check(int(h5["/series/time_count"][0]) == times, f"result.h5 holds {times} output times")
+        nodes, tets = h5["/mesh/coordinates_mm"].shape[0], h5["/mesh/tets"].shape[0]
+        for name in FIELDS:
+            centre = "node" if name in ("displacement", "velocity") else "cell"
+            path = f"/series/{centre}/{name}"
+            check(path in h5 and h5[path].shape[1] == (nodes if centre == "node" else tets), f"{path} present")
+    check(len(history(out)) == times, f"history.csv has {times} rows")
+
+
+def block(args):
+    out = pathlib.Path(args.out)
+    result = run(args.exe, args.case, out, [])
+    check(result.returncode == 0, f"run exits 0 ({result.stderr.strip()[-300:]})")
+    summary = json.load(open(out / "summary.json"))
+    check_common(out, summary, 5)
+    l_end = 1.0 + RATE
+    sigma = uniaxial_cauchy(l_end)
+    close(summary["max"]["log_strain"]["value"], math.log(l_end), 1e-6, "max log strain = ln(1.2)")
+    close(summary["max"]["von_mises_pa"]["value"], sigma, 1e-3, "max von Mises = uniaxial Cauchy stress")
+    close(summary["max"]["principal_stress_pa"]["value"], sigma, 1e-3, "max principal stress = uniaxial Cauchy stress")
+    # The rate d ln l/dt = 0.2/l is largest at the first output time after 0 (y' = 0 at t = 0).
+    rate = summary["max"]["strain_rate_per_s"]
+    close(rate["time_s"], 0.25, 1e-12, "max strain rate at t = 0.25 s")
+    close(rate["value"], RATE / (1 + RATE * rate["time_s"]), 1e-3, "max strain rate = d ln(lambda)/dt")
+    last = history(out)[-1]
+    close(float(last["max_strain_rate"]), RATE / l_end, 1e-3, "strain rate at t = 1 s = 0.2/1.2")
+    close(float(last["max_equivalent_strain_rate"]), RATE / l_end, 1e-3, "equivalent strain rate at t = 1 s")
+    close(summary["reactions"]["x_max"][0], sigma / l_end * AREA, 1e-3, "reaction on x_max = nominal stress x area")
+    close(-summary["reactions"]["x_min"][0], sigma / l_end * AREA, 1e-3, "reaction on x_min balances x_max")
+
+
+def brain_tip(args):
+    out = pathlib.Path(args.out)
+    coarse = ["--set", "tissue.core_element_mm=1.5", "--set", "tissue.outer_element_mm=3.0",
+              "--set", "motion.duration_s=0.01", "--set", "output.interval_s=0.005"]
+    result = run(args.exe, args.case, out, coarse)
+    check(result.returncode == 0, f"run exits 0 ({result.stderr.strip()[-300:]})")
+    check(result.stderr.count("run: t = ") == 3, "one progress line per output time on stderr")
+    summary = json.load(open(out / "summary.json"))
+    check_common(out, summary, 3)
+    cavity, fixed = summary["reactions"]["cavity"], summary["reactions"]["fixed"]
+    check(cavity[2] > 0, f"needle pushes the tissue along +z: cavity reaction z = {cavity[2]:.3e} N > 0")
+    check(fixed[2] < 0, f"skull holds it back: fixed reaction z = {fixed[2]:.3e} N < 0")
+    size = math.sqrt(sum(c * c for c in cavity))
+    imbalance = math.sqrt(sum((a + b) ** 2 for a, b in zip(cavity, fixed)))
+    check(imbalance <= 1e-3 * size, f"global balance |cavity + fixed| = {imbalance:.2e} <= 1e-3 x {size:.3e} N")
+    for key in SUMMARY_MAXIMA:
+        check(summary["max"][key]["value"] > 0, f"max.{key} = {summary['max'][key]['value']:.4g} > 0")
+    check(0 < summary["energy"]["max_kinetic_to_elastic_ratio"] < 0.1,
+          f"kinetic/elastic energy {summary['energy']['max_kinetic_to_elastic_ratio']:.2e} small")
+
+
+def failure(args):
+    out = pathlib.Path(args.out)
+    result = run(args.exe, args.case, out, [])
+    check(result.returncode != 0, f"run exits non-zero ({result.returncode})")
+    errors = [line for line in result.stderr.splitlines() if line.startswith("needlefem: error:")]
+    check(len(errors) == 1 and result.stderr.rstrip().splitlines()[-1] == errors[0],
+          f"exactly one error line, last on stderr: {errors}")
+    summary = json.load(open(out / "summary.json"))
+    check(summary["status"] == "failed" and summary["error"] in errors[0], "summary.json: status failed, the error")
+    completed = summary["output_times"]
+    check(completed >= 1, f"{completed} output times completed before the failure")
+    with h5py.File(out / "result.h5", "r") as h5:
+        check(int(h5["/series/time_count"][0]) == completed, "result.h5 lists the completed output times")
+        check(h5["/series/cell/von_mises"][completed - 1].max() > 0 or completed == 1, "their fields are readable")
+    check(len(history(out)) == completed, "history.csv has a row per completed output time")
+    check((out / "result.xdmf").exists(), "result.xdmf exists")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("scenario", choices=["block", "brain-tip", "failure"])
+    parser.add_argument("--exe", required=True)
+    parser.add_argument("--case", required=True)
+    parser.add_argument("--out", required=True)
+    args = parser.parse_args()
+    {"block": block, "brain-tip": brain_tip, "failure": failure}[args.scenario](args)
+    if failures:
+        print(f"{len(failures)} check(s) failed", file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
