@@ -181,15 +181,16 @@ DaeStatus MechanicsSystem::residual(double t, Vec y, Vec ydot, Vec F) {
     WriteArray out(F);
     if (!assemble_internal(state.data(), rate.data(), out.data(), out.data() + displacement_dofs(), nullptr))
       return DaeStatus::recoverable;
+    for (const auto& load : surface_loads_) load->add_residual(t, state.data(), rate.data(), dofs_, out.data());
     for (const auto& d : conditions_.dofs)
       out.data()[d.dof] = state.data()[d.dof] - conditions_.value(mesh_, d, t);
     return DaeStatus::ok;
   });
 }
 
-DaeStatus MechanicsSystem::setup_jacobian(double /*t*/, Vec y, Vec /*ydot*/, double cj) {
+DaeStatus MechanicsSystem::setup_jacobian(double t, Vec y, Vec ydot, double cj) {
   return guarded([&] {
-    ReadArray state(y);
+    ReadArray state(y), rate(ydot);
     const int n = mesh_.nodes_per_tet, terms = kernel_.prony_terms();
     const double scale = kernel_.condensed_tangent_scale(cj);
     std::vector<double> u_e(3 * n);
@@ -212,6 +213,8 @@ DaeStatus MechanicsSystem::setup_jacobian(double /*t*/, Vec y, Vec /*ydot*/, dou
         std::move(element.points.begin(), element.points.end(),
                   condensation_.begin() + static_cast<std::ptrdiff_t>(k * geometry_[k].points));
     }
+    if (!inverted)
+      for (const auto& load : surface_loads_) load->add_jacobian(t, state.data(), rate.data(), cj, dofs_, jacobian_);
     check(MatAssemblyBegin(jacobian_, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
     check(MatAssemblyEnd(jacobian_, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
     if (inverted) return DaeStatus::recoverable;  // assembled anyway: the next setup can zero it

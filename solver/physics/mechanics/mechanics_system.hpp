@@ -5,6 +5,7 @@
 // point, then term, 6 Voigt components 11 22 33 23 13 12; viscous_offset()).
 //
 //   F_u = f_int(u, Q) - f_ext                      (algebraic; f_ext = 0 in these scenes)
+//       + Σ r_s(t, u, u')                          (registered surface loads, surface_load.hpp)
 //   F_u = u - ū(t)                                 on prescribed dofs (dirichlet.hpp)
 //   F_Q = Q_i' - (g_i S⁰_iso(C) - Q_i) / τ_i      (differential; Simo 1987, Holzapfel 2000 §6.10)
 //
@@ -36,6 +37,7 @@
 #include "physics/material/material.hpp"
 #include "physics/mechanics/dirichlet.hpp"
 #include "physics/mechanics/dof_map.hpp"
+#include "physics/mechanics/surface_load.hpp"
 
 namespace needlefem {
 class Case;
@@ -68,6 +70,9 @@ class MechanicsSystem final : public DaeSystem {
   DaeStatus solve_jacobian(Vec b, Vec x) override;
   long linear_iterations() const override { return solver_->iterations(); }
 
+  // Adds a surface's terms (contact, tractions; surface_load.hpp) to residual and Jacobian.
+  void add_surface_load(std::shared_ptr<const SurfaceLoad> load) { surface_loads_.push_back(std::move(load)); }
+
   // --- layout and results ------------------------------------------------------------------
   PetscInt displacement_dofs() const { return dofs_.dof_count; }
   PetscInt viscous_dofs() const { return viscous_per_element_ * static_cast<PetscInt>(dofs_.tissue_tets.size()); }
@@ -98,6 +103,7 @@ class MechanicsSystem final : public DaeSystem {
   std::vector<elements::ElementGeometry> geometry_;  // per tissue element
   PetscInt viscous_per_element_ = 0;
   std::vector<char> prescribed_;  // per displacement dof
+  std::vector<std::shared_ptr<const SurfaceLoad>> surface_loads_;
 
   // Newton matrix data kept from setup_jacobian for solve_jacobian.
   double cj_ = 0.0;

@@ -1,0 +1,233 @@
+// Equations: penalty_contact.hpp.
+#include "physics/contact/penalty_contact.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "case/case.hpp"
+
+namespace needlefem::contact {
+
+namespace {
+
+constexpr double kMetresPerMm = 1e-3;
+
+// Dunavant (1985) 6-point, degree-4 rule on the reference triangle (area 1/2): (L1, L2, weight).
+struct TrianglePoint {
+  double xi, eta, weight;
+};
+constexpr double kA = 0.445948490915965, kB = 0.091576213509771;
+constexpr double kWa = 0.5 * 0.223381589678011, kWb = 0.5 * 0.109951743655322;
+constexpr std::array<TrianglePoint, 6> kTriangleRule{{{kA, kA, kWa},
+                                                      {1.0 - 2.0 * kA, kA, kWa},
+                                                      {kA, 1.0 - 2.0 * kA, kWa},
+                                                      {kB, kB, kWb},
+                                                      {1.0 - 2.0 * kB, kB, kWb},
+                                                      {kB, 1.0 - 2.0 * kB, kWb}}};
+
+// TRI3 / TRI6 shape functions and their (ξ, η) derivatives; L0 = 1 - ξ - η, L1 = ξ, L2 = η;
+// TRI6 edge nodes (0,1) (1,2) (2,0).
+void triangle_shape(int nodes, double xi, double eta, double* N, double* dN_dxi, double* dN_deta) {
+  const double l0 = 1.0 - xi - eta, l1 = xi, l2 = eta;
+  if (nodes == 3) {
+    N[0] = l0, N[1] = l1, N[2] = l2;
+    dN_dxi[0] = -1.0, dN_dxi[1] = 1.0, dN_dxi[2] = 0.0;
+    dN_deta[0] = -1.0, dN_deta[1] = 0.0, dN_deta[2] = 1.0;
+    return;
+  }
+  N[0] = l0 * (2.0 * l0 - 1.0), N[1] = l1 * (2.0 * l1 - 1.0), N[2] = l2 * (2.0 * l2 - 1.0);
+  N[3] = 4.0 * l0 * l1, N[4] = 4.0 * l1 * l2, N[5] = 4.0 * l2 * l0;
+  // dL0 = (-1, -1), dL1 = (1, 0), dL2 = (0, 1).
+  dN_dxi[0] = -(4.0 * l0 - 1.0), dN_dxi[1] = 4.0 * l1 - 1.0, dN_dxi[2] = 0.0;
+  dN_dxi[3] = 4.0 * (l0 - l1), dN_dxi[4] = 4.0 * l2, dN_dxi[5] = -4.0 * l2;
+  dN_deta[0] = -(4.0 * l0 - 1.0), dN_deta[1] = 0.0, dN_deta[2] = 4.0 * l2 - 1.0;
+  dN_deta[3] = -4.0 * l1, dN_deta[4] = 4.0 * l1, dN_deta[5] = 4.0 * (l0 - l2);
+}
+
+Point3 cross(const Point3& a, const Point3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+
+}  // namespace
+
+ContactParameters contact_parameters_from_case(const Case& input, double reference_modulus) {
+  ContactParameters p;
+  p.friction_coefficient = input.real("contact.friction_coefficient");
+  p.penalty_factor = input.real("contact.penalty_factor");
+  p.slip_velocity_regularisation = input.real("contact.slip_velocity_regularisation_mm_per_s") * kMetresPerMm;
+  p.reference_modulus = reference_modulus;
+  return p;
+}
+
+PenaltyContact::PenaltyContact(const TetMesh& mesh, const std::string& surface,
+                               std::shared_ptr<const RigidObstacle> obstacle, const ContactParameters& parameters)
+    : mesh_(mesh), obstacle_(std::move(obstacle)), parameters_(parameters), nodes_per_face_(mesh.nodes_per_face()) {
+  if (!(parameters.reference_modulus > 0.0) || !(parameters.penalty_factor > 0.0) ||
+      !(parameters.slip_velocity_regularisation > 0.0) || parameters.friction_coefficient < 0.0)
+    throw std::invalid_argument("PenaltyContact: modulus, penalty factor and slip regularisation must be positive, "
+                                "friction coefficient non-negative");
+  const auto found = mesh.surface_faces.find(surface);
+  if (found == mesh.surface_faces.end()) throw std::runtime_error("the mesh has no surface '" + surface + "'");
+  face_nodes_ = found->second;
+  const int m = nodes_per_face_;
+  std::array<double, 6> dN_dxi{}, dN_deta{};
+  for (std::size_t f = 0; f < face_nodes_.size() / m; ++f) {
+    Face face;
+    double area = 0.0;
+    for (const auto& q : kTriangleRule) {
+      FacePoint point;
+      triangle_shape(m, q.xi, q.eta, point.shape.data(), dN_dxi.data(), dN_deta.data());
+      Point3 tangent_xi{}, tangent_eta{};
+      for (int a = 0; a < m; ++a)
+        for (int c = 0; c < 3; ++c) {
+          const double X = mesh.nodes[face_nodes_[f * m + a]][c];
+          tangent_xi[c] += dN_dxi[a] * X;
+          tangent_eta[c] += dN_deta[a] * X;
+        }
+      const Point3 normal = cross(tangent_xi, tangent_eta);
+      point.area_weight = q.weight * std::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
+      area += point.area_weight;
+      face.points.push_back(point);
+    }
+    if (!(area > 0.0)) throw std::runtime_error(fmt::format("contact surface '{}': face {} has no area", surface, f));
+    face.penalty = parameters.penalty_factor * parameters.reference_modulus / std::sqrt(2.0 * area);
+    faces_.push_back(std::move(face));
+  }
+}
+
+FaceTerms PenaltyContact::face_terms(std::size_t face, const double* x, const double* v, double t, double cj,
+                                     bool with_jacobian, const Point3& moment_point) const {
+  const int m = nodes_per_face_, n = 3 * m;
+  const double mu = parameters_.friction_coefficient, eps_v2 = std::pow(parameters_.slip_velocity_regularisation, 2);
+  const double penalty = faces_[face].penalty;
+  FaceTerms out;
+  out.residual.assign(n, 0.0);
+  if (with_jacobian) out.jacobian.assign(static_cast<std::size_t>(n) * n, 0.0);
+  for (const FacePoint& point : faces_[face].points) {
+    Point3 position{}, velocity{};
+    for (int a = 0; a < m; ++a)
+      for (int c = 0; c < 3; ++c) {
+        position[c] += point.shape[a] * x[3 * a + c];
+        velocity[c] += point.shape[a] * v[3 * a + c];
+      }
+    const ObstacleProjection p = obstacle_->project(position, t);
+    // Touching points (g = 0, e.g. every point of a surface that starts in contact) count as
+    // closed: their penalty stiffness then enters the Newton matrix evaluated at the start state,
+    // without which IDA's modified Newton never sees the contact it is about to create.
+    if (p.gap > 0.0) continue;
+    const Point3& normal = p.normal;
+    const double pressure = -penalty * p.gap;
+    Point3 relative, slip, traction;
+    for (int i = 0; i < 3; ++i) relative[i] = velocity[i] - p.velocity[i];
+    const double normal_rate = relative[0] * normal[0] + relative[1] * normal[1] + relative[2] * normal[2];
+    for (int i = 0; i < 3; ++i) slip[i] = relative[i] - normal_rate * normal[i];
+    const double s = std::sqrt(slip[0] * slip[0] + slip[1] * slip[1] + slip[2] * slip[2] + eps_v2);
+    for (int i = 0; i < 3; ++i) traction[i] = pressure * normal[i] - mu * pressure * slip[i] / s;
+
+    const double w = point.area_weight;
+    out.contact_area += w;
+    Point3 arm;
+    for (int i = 0; i < 3; ++i) arm[i] = position[i] - moment_point[i];
+    const Point3 moment = cross(arm, traction);
+    for (int i = 0; i < 3; ++i) {
+      out.force_on_tissue[i] += w * traction[i];
+      out.moment_on_tissue[i] += w * moment[i];
+    }
+    for (int a = 0; a < m; ++a)
+      for (int i = 0; i < 3; ++i) out.residual[3 * a + i] -= w * point.shape[a] * traction[i];
+    if (!with_jacobian) continue;
+
+    // T = (μ p / s)(I - v_T v_Tᵀ / s²); ∂v_T/∂x = -(n·r) G - n (rᵀ G) - P W.
+    std::array<double, 9> T{}, slip_gradient{}, d_position{}, d_velocity{};
+    std::array<double, 3> r_G{};  // rᵀ G
+    const double slip_curvature = parameters_.friction_tangent == FrictionTangent::consistent ? 1.0 : 0.0;
+    for (int k = 0; k < 3; ++k)
+      for (int j = 0; j < 3; ++j) r_G[k] += relative[j] * p.normal_gradient[3 * j + k];
+    for (int i = 0; i < 3; ++i)
+      for (int k = 0; k < 3; ++k) {
+        T[3 * i + k] = mu * pressure / s * ((i == k ? 1.0 : 0.0) - slip_curvature * slip[i] * slip[k] / (s * s));
+        double projected_W = 0.0;  // (P W)_ik
+        for (int j = 0; j < 3; ++j)
+          projected_W += ((i == j ? 1.0 : 0.0) - normal[i] * normal[j]) * p.velocity_gradient[3 * j + k];
+        slip_gradient[3 * i + k] = -normal_rate * p.normal_gradient[3 * i + k] - normal[i] * r_G[k] - projected_W;
+      }
+    for (int i = 0; i < 3; ++i)
+      for (int k = 0; k < 3; ++k) {
+        double T_slip = 0.0, T_P = 0.0;
+        for (int j = 0; j < 3; ++j) {
+          T_slip += T[3 * i + j] * slip_gradient[3 * j + k];
+          T_P += T[3 * i + j] * ((j == k ? 1.0 : 0.0) - normal[j] * normal[k]);
+        }
+        d_position[3 * i + k] = -penalty * normal[i] * normal[k] + pressure * p.normal_gradient[3 * i + k] - T_slip +
+                                mu * penalty * slip[i] / s * normal[k];
+        d_velocity[3 * i + k] = -T_P;
+      }
+    for (int a = 0; a < m; ++a)
+      for (int b = 0; b < m; ++b) {
+        const double factor = -w * point.shape[a] * point.shape[b];
+        for (int i = 0; i < 3; ++i)
+          for (int k = 0; k < 3; ++k)
+            out.jacobian[static_cast<std::size_t>(3 * a + i) * n + 3 * b + k] +=
+                factor * (d_position[3 * i + k] + cj * d_velocity[3 * i + k]);
+      }
+  }
+  return out;
+}
+
+void PenaltyContact::gather(std::size_t face, const double* y, const double* ydot, const mechanics::DofMap& dofs,
+                            double* x, double* v) const {
+  for (int a = 0; a < nodes_per_face_; ++a) {
+    const int node = face_nodes(face)[a];
+    for (int c = 0; c < 3; ++c) {
+      x[3 * a + c] = mesh_.nodes[node][c] + y[dofs.dof(node, c)];
+      v[3 * a + c] = ydot[dofs.dof(node, c)];
+    }
+  }
+}
+
+ContactResultant PenaltyContact::resultant(double t, const double* y, const double* ydot,
+                                           const mechanics::DofMap& dofs, const Point3& moment_point) const {
+  ContactResultant total;
+  std::vector<double> x(3 * nodes_per_face_), v(3 * nodes_per_face_);
+  for (std::size_t f = 0; f < faces_.size(); ++f) {
+    gather(f, y, ydot, dofs, x.data(), v.data());
+    const FaceTerms terms = face_terms(f, x.data(), v.data(), t, 0.0, false, moment_point);
+    for (int i = 0; i < 3; ++i) {
+      total.force_on_obstacle[i] -= terms.force_on_tissue[i];
+      total.moment_on_obstacle[i] -= terms.moment_on_tissue[i];
+    }
+    total.contact_area += terms.contact_area;
+  }
+  return total;
+}
+
+void PenaltyContact::add_residual(double t, const double* y, const double* ydot, const mechanics::DofMap& dofs,
+                                  double* f_u) const {
+  std::vector<double> x(3 * nodes_per_face_), v(3 * nodes_per_face_);
+  for (std::size_t f = 0; f < faces_.size(); ++f) {
+    gather(f, y, ydot, dofs, x.data(), v.data());
+    const FaceTerms terms = face_terms(f, x.data(), v.data(), t, 0.0, false);
+    if (terms.contact_area == 0.0) continue;
+    for (int a = 0; a < nodes_per_face_; ++a)
+      for (int c = 0; c < 3; ++c) f_u[dofs.dof(face_nodes(f)[a], c)] += terms.residual[3 * a + c];
+  }
+}
+
+void PenaltyContact::add_jacobian(double t, const double* y, const double* ydot, double cj,
+                                  const mechanics::DofMap& dofs, Mat jacobian) const {
+  std::vector<double> x(3 * nodes_per_face_), v(3 * nodes_per_face_);
+  std::vector<PetscInt> blocks(nodes_per_face_);
+  for (std::size_t f = 0; f < faces_.size(); ++f) {
+    gather(f, y, ydot, dofs, x.data(), v.data());
+    const FaceTerms terms = face_terms(f, x.data(), v.data(), t, cj, true);
+    if (terms.contact_area == 0.0) continue;
+    for (int a = 0; a < nodes_per_face_; ++a) blocks[a] = dofs.node_dof[face_nodes(f)[a]] / 3;
+    const PetscErrorCode code = MatSetValuesBlocked(jacobian, nodes_per_face_, blocks.data(), nodes_per_face_,
+                                                    blocks.data(), terms.jacobian.data(), ADD_VALUES);
+    if (code != 0) throw std::runtime_error(fmt::format("PETSc error {} in MatSetValuesBlocked (contact)", code));
+  }
+}
+
+}  // namespace needlefem::contact

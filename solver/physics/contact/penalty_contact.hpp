@@ -1,0 +1,128 @@
+// Frictional contact between a tissue boundary surface and a rigid obstacle with a prescribed
+// pose: penalty normal traction and Coulomb friction regularised by the slip velocity. Knows the
+// obstacle (rigid_obstacle.hpp) and the tissue surface, nothing of the tissue's material: the
+// modulus that scales the penalty is given by the caller.
+//
+// Kinematics, at each quadrature point of each boundary face (TRI6: 6-point degree-4 rule of
+// Dunavant 1985; TRI3: the same rule) — never at the nodes, whose weights are wrong (even
+// negative-valued shape functions) on quadratic faces:
+//   x = Σ N_a (X_a + u_a),  v = Σ N_a u̇_a,  (g, n, G, w, W) = obstacle.project(x, t).
+// Normal (penalty, energy ½ ε_N ⟨-g⟩² per reference area):
+//   p_N = ε_N ⟨-g⟩,   ε_N = c μ₀ / h_face,   h_face = √(2 A_face)  (the leg of the right
+//   isosceles triangle of the face's reference area), c = penalty_factor, μ₀ the tissue's
+//   instantaneous shear modulus. The penalty interpenetration -g = p_N h/(c μ₀) is then the
+//   same fraction of the local element size on every mesh, and the error it causes falls as 1/c
+//   (tests/contact: Hertz indentation at c = 100 and 1000).
+// Friction (Coulomb coefficient μ, regularised by the slip velocity through y' of IDA; Wriggers
+// 2006 §5.2, Oden & Martins 1985):
+//   r = v - w,  v_T = (I - n nᵀ) r,  t_T = -μ p_N v_T / √(|v_T|² + ε_v²).
+// Effect of the regularisation: |t_T| < μ p_N always, and |t_T| → μ p_N once |v_T| ≫ ε_v
+// (|t_T|/(μ p_N) = 1 - ε_v²/(2|v_T|²) + ...: 5e-5 at |v_T| = 100 ε_v). "Sticking" is a viscous
+// creep: a point loaded at a fraction φ < 1 of the Coulomb limit slides at
+//   |v_T| = ε_v φ / √(1 - φ²),
+// so over a time T it slips at most ε_v T φ/√(1-φ²); choose ε_v far below the driving speeds.
+// Traction on the tissue t = p_N n + t_T; residual of tissue node a (F = f_int - f_ext):
+//   r_a = -∫ N_a t dA₀  (reference area: the penalty and friction act per undeformed area).
+// Newton matrix (∂/∂u + c_j ∂/∂u̇), per point, with P = I - n nᵀ, s = √(|v_T|² + ε_v²),
+// T = (μ p_N / s)(I - v_T v_Tᵀ / s²):
+//   ∂t/∂x = -ε_N n nᵀ + p_N G - T ∂v_T/∂x + μ ε_N (v_T/s) nᵀ,
+//   ∂v_T/∂x = -(n·r) G - n (rᵀ G) - P W,        ∂t/∂v = -T P,
+// FrictionTangent::secant (the default) drops the v_T v_Tᵀ/s² term of T: the consistent
+// tangent's stiffness along the slip direction, μ p_N ε_v²/s³, vanishes once sliding, and Newton
+// on this arctan-like law then overshoots and diverges from starts far on its flat part (measured:
+// the first step of a block pressed on a plane with μ = 0.5 never converges). The secant μ p_N/s
+// keeps the slip direction stiff, so Newton converges (linearly in the friction part) from any
+// start; the residual, hence the solution, is unchanged. Tests use the consistent form against
+// finite differences.
+//   J_ab = -∫ N_a N_b (∂t/∂x + c_j ∂t/∂v) dA₀       (zero where g > 0; touching points, g = 0,
+//   contribute their penalty stiffness so the first Newton matrix already sees the contact).
+#pragma once
+
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "model/tet_mesh.hpp"
+#include "physics/contact/rigid_obstacle.hpp"
+#include "physics/mechanics/surface_load.hpp"
+
+namespace needlefem {
+class Case;
+}
+
+namespace needlefem::contact {
+
+enum class FrictionTangent { secant, consistent };
+
+struct ContactParameters {
+  double friction_coefficient = 0.5;
+  double penalty_factor = 100.0;              // c in ε_N = c μ₀ / h_face
+  double reference_modulus = 0.0;             // μ₀, Pa
+  double slip_velocity_regularisation = 1e-5; // ε_v, m/s
+  FrictionTangent friction_tangent = FrictionTangent::secant;
+};
+
+// [contact] keys; μ₀ from the caller (the material's instantaneous shear modulus).
+ContactParameters contact_parameters_from_case(const Case& input, double reference_modulus);
+
+// Residual and Newton-matrix terms of one face: 3m values and 3m x 3m (row-major), m face nodes.
+struct FaceTerms {
+  std::vector<double> residual;
+  std::vector<double> jacobian;
+  Point3 force_on_tissue{};   // ∫ t dA₀
+  Point3 moment_on_tissue{};  // ∫ (x - moment_point) × t dA₀
+  double contact_area = 0.0;  // reference area where g <= 0
+};
+
+// Sum over the surface; the obstacle feels the opposite.
+struct ContactResultant {
+  Point3 force_on_obstacle{};
+  Point3 moment_on_obstacle{};  // about the point given to resultant()
+  double contact_area = 0.0;
+};
+
+class PenaltyContact final : public mechanics::SurfaceLoad {
+ public:
+  // `surface` names boundary faces of `mesh` (outward oriented), which must outlive this.
+  PenaltyContact(const TetMesh& mesh, const std::string& surface, std::shared_ptr<const RigidObstacle> obstacle,
+                 const ContactParameters& parameters);
+
+  std::size_t face_count() const { return faces_.size(); }
+  int nodes_per_face() const { return nodes_per_face_; }
+  const int* face_nodes(std::size_t face) const { return face_nodes_.data() + face * nodes_per_face_; }
+  double penalty(std::size_t face) const { return faces_[face].penalty; }
+
+  // One face's terms at current positions x (3m) and velocities v (3m) of its nodes.
+  FaceTerms face_terms(std::size_t face, const double* x, const double* v, double t, double cj, bool with_jacobian,
+                       const Point3& moment_point = {}) const;
+
+  ContactResultant resultant(double t, const double* y, const double* ydot, const mechanics::DofMap& dofs,
+                             const Point3& moment_point = {}) const;
+
+  void add_residual(double t, const double* y, const double* ydot, const mechanics::DofMap& dofs,
+                    double* f_u) const override;
+  void add_jacobian(double t, const double* y, const double* ydot, double cj, const mechanics::DofMap& dofs,
+                    Mat jacobian) const override;
+
+ private:
+  struct FacePoint {
+    std::array<double, 6> shape{};
+    double area_weight = 0.0;  // quadrature weight x reference area Jacobian
+  };
+  struct Face {
+    double penalty = 0.0;
+    std::vector<FacePoint> points;
+  };
+  void gather(std::size_t face, const double* y, const double* ydot, const mechanics::DofMap& dofs, double* x,
+              double* v) const;
+
+  const TetMesh& mesh_;
+  std::shared_ptr<const RigidObstacle> obstacle_;
+  ContactParameters parameters_;
+  int nodes_per_face_ = 6;
+  std::vector<int> face_nodes_;
+  std::vector<Face> faces_;
+};
+
+}  // namespace needlefem::contact

@@ -1,0 +1,56 @@
+// Rigid obstacles the tissue surface can touch, described by what contact needs at a point x
+// of the deformed tissue surface (Wriggers, Computational Contact Mechanics, 2006, §4.1):
+//   g(x)      signed gap: distance from x to the obstacle surface, > 0 outside, < 0 inside;
+//   n(x)      unit outward normal of the obstacle at the closest point (n = ∂g/∂x);
+//   G(x)      ∂n/∂x (curvature: 0 for a plane, (I - n nᵀ)/|x - c| for a sphere of centre c);
+//   w(x)      velocity of the obstacle's material point at the closest point;
+//   W(x)      ∂w/∂x (0 for a translating obstacle).
+// Poses are prescribed functions of time: a plane through p(t) = p0 + v t with fixed normal,
+// a sphere with centre c(t) = c0 + v t (Hertz indentation tests).
+#pragma once
+
+#include <array>
+
+#include "model/tet_mesh.hpp"
+
+namespace needlefem::contact {
+
+using Matrix3 = std::array<double, 9>;  // row-major
+
+struct ObstacleProjection {
+  double gap = 0.0;
+  Point3 normal{};
+  Matrix3 normal_gradient{};
+  Point3 velocity{};
+  Matrix3 velocity_gradient{};
+};
+
+class RigidObstacle {
+ public:
+  virtual ~RigidObstacle() = default;
+  virtual ObstacleProjection project(const Point3& x, double t) const = 0;
+};
+
+// The half-space {(x - p(t))·n < 0} is solid; n is normalised on construction.
+class TranslatingPlane final : public RigidObstacle {
+ public:
+  TranslatingPlane(const Point3& point, const Point3& normal, const Point3& velocity);
+  ObstacleProjection project(const Point3& x, double t) const override;
+
+ private:
+  Point3 point_, normal_, velocity_;
+};
+
+// A solid ball of radius R whose centre moves as c0 + v t.
+class TranslatingSphere final : public RigidObstacle {
+ public:
+  TranslatingSphere(const Point3& centre, double radius, const Point3& velocity);
+  ObstacleProjection project(const Point3& x, double t) const override;
+
+ private:
+  Point3 centre_;
+  double radius_;
+  Point3 velocity_;
+};
+
+}  // namespace needlefem::contact
