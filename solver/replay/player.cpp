@@ -1,4 +1,5 @@
 // The paced replay loop and its statistics; the pacing rules are in player.hpp.
+#include <algorithm>
 #include "replay/player.hpp"
 
 #include <signal.h>
@@ -149,7 +150,9 @@ ReplayReport replay(const Trajectory& trajectory, HapticDevice& device, const Re
 
     ++k;
     // Overslept past further deadlines: resume at the newest one instead of bursting.
-    const auto newest_due = static_cast<std::uint64_t>((monotonic_now_ns() - start) / period_ns);
+    // Slots past the last frame are not frames: cap at frame_count.
+    const auto newest_due =
+        std::min<std::uint64_t>(frame_count, static_cast<std::uint64_t>((monotonic_now_ns() - start) / period_ns));
     if (newest_due > k) {
       report.dropped_frames += newest_due - k;
       k = newest_due;
