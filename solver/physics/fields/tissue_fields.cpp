@@ -4,6 +4,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "integration/petsc_arrays.hpp"
 #include "model/tet_geometry.hpp"
 #include "physics/fields/point_quantities.hpp"
 
@@ -23,18 +24,6 @@ Mat3d from_voigt(const double* v) {
   return m;
 }
 
-class ReadVec {
- public:
-  explicit ReadVec(Vec v) : vec_(v) { VecGetArrayRead(vec_, &data_); }
-  ~ReadVec() { VecRestoreArrayRead(vec_, &data_); }
-  ReadVec(const ReadVec&) = delete;
-  ReadVec& operator=(const ReadVec&) = delete;
-  const double* data() const { return data_; }
-
- private:
-  Vec vec_;
-  const PetscScalar* data_ = nullptr;
-};
 
 }  // namespace
 
@@ -67,7 +56,7 @@ TissueFieldEvaluator::TissueFieldEvaluator(const mechanics::MechanicsSystem& sys
 }
 
 TissueFields TissueFieldEvaluator::evaluate(Vec y, Vec ydot) const {
-  const ReadVec state(y), rate(ydot);
+  const ReadArray state(y), rate(ydot);
   const auto& dofs = system_.dof_map();
   const int n = mesh_.nodes_per_tet, points = static_cast<int>(shape_values_.size());
   const int prony_terms = system_.kernel().prony_terms();

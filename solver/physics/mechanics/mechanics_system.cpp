@@ -1,6 +1,8 @@
 // Equations: mechanics_system.hpp.
 #include "physics/mechanics/mechanics_system.hpp"
 
+#include "integration/petsc_arrays.hpp"
+
 #include <algorithm>
 #include <stdexcept>
 
@@ -27,32 +29,6 @@ DaeStatus guarded(Body&& body) noexcept {
   }
 }
 
-// Read-only / writable views of a PETSc vector's local array for one scope.
-class ReadArray {
- public:
-  explicit ReadArray(Vec v) : v_(v) { check(VecGetArrayRead(v_, &data_), "VecGetArrayRead"); }
-  ~ReadArray() { VecRestoreArrayRead(v_, &data_); }
-  ReadArray(const ReadArray&) = delete;
-  ReadArray& operator=(const ReadArray&) = delete;
-  const double* data() const { return data_; }
-
- private:
-  Vec v_;
-  const PetscScalar* data_ = nullptr;
-};
-
-class WriteArray {
- public:
-  explicit WriteArray(Vec v) : v_(v) { check(VecGetArray(v_, &data_), "VecGetArray"); }
-  ~WriteArray() { VecRestoreArray(v_, &data_); }
-  WriteArray(const WriteArray&) = delete;
-  WriteArray& operator=(const WriteArray&) = delete;
-  double* data() const { return data_; }
-
- private:
-  Vec v_;
-  PetscScalar* data_ = nullptr;
-};
 
 elements::Formulation formulation_from_case(const Case& input) {
   return input.text("element.formulation") == "displacement" ? elements::Formulation::displacement
