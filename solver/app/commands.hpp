@@ -28,5 +28,6 @@ void add_magnet_command(CLI::App& app);
 void add_replay_command(CLI::App& app);
 void add_steer_command(CLI::App& app);
 void add_run_command(CLI::App& app);
+void add_sweep_command(CLI::App& app);
 
 }  // namespace needlefem::app

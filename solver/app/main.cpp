@@ -57,6 +57,7 @@ int main(int argc, char** argv) {
   app::add_replay_command(cli);
   app::add_steer_command(cli);
   app::add_run_command(cli);
+  app::add_sweep_command(cli);
 
   try {
     std::vector<std::string> reversed(own.rbegin(), own.rend());

@@ -1,0 +1,355 @@
+#include "sweep/sweep_plan.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include "case/case.hpp"
+#include "case/schema.hpp"
+
+namespace needlefem::sweep {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// Case keys to values, the key being one dotted string ("needle.radius_mm") whatever way the
+// TOML spelled it: a toml::table whose keys contain dots is a copyable map of TOML values.
+using FlatTable = toml::table;
+
+// One axis of a grid: one key (from [axes]) or several keys varying together ([linked]).
+struct Axis {
+  std::vector<std::string> keys;
+  std::vector<toml::array> values;  // per key, the same length for all keys
+  std::size_t size() const { return values.front().size(); }
+};
+
+struct Grid {
+  std::string name;
+  FlatTable set;
+  std::vector<Axis> axes;
+};
+
+class SweepFile {
+ public:
+  explicit SweepFile(fs::path file) : file_(std::move(file)) {}
+
+  [[noreturn]] void fail(const std::string& key, const std::string& reason) const {
+    throw CaseError(fmt::format("{}: key '{}': {}", file_.string(), key, reason));
+  }
+
+  toml::table parse() const {
+    try {
+      return toml::parse_file(file_.string());
+    } catch (const toml::parse_error& e) {
+      if (!fs::exists(file_)) throw CaseError(fmt::format("{}: cannot open sweep file", file_.string()));
+      throw CaseError(fmt::format("{}:{}:{}: TOML syntax error: {}", file_.string(), e.source().begin.line,
+                                  e.source().begin.column, e.description()));
+    }
+  }
+
+  const KeySpec& case_key(const std::string& where, const std::string& key) const {
+    if (const KeySpec* spec = find_key(key)) return *spec;
+    const std::string hint = closest_key(key);
+    fail(where + key, hint.empty() ? std::string("not a case key (see `needlefem keys`)")
+                                   : fmt::format("not a case key (did you mean '{}'?)", hint));
+  }
+
+  // The case keys of a table, given quoted ("needle.radius_mm" = ...) or as dotted/nested
+  // keys, in the order the file gives them (a toml::table iterates sorted by key).
+  std::vector<std::pair<std::string, const toml::node*>> entries(const toml::table& table,
+                                                                 const std::string& where) const {
+    std::vector<std::pair<std::string, const toml::node*>> out;
+    collect(table, "", where, out);
+    std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) {
+      const auto &x = a.second->source().begin, &y = b.second->source().begin;
+      return std::pair(x.line, x.column) < std::pair(y.line, y.column);
+    });
+    return out;
+  }
+
+  FlatTable flatten(const toml::node* node, const std::string& where) const {
+    FlatTable flat;
+    if (!node) return flat;
+    if (!node->is_table()) fail(where, "expected a table of case keys");
+    for (const auto& [key, value] : entries(*node->as_table(), where + ".")) flat.insert_or_assign(key, *value);
+    return flat;
+  }
+
+  // [axes] (one axis per key) or [linked] (one axis of all keys).
+  std::vector<Axis> axes(const toml::node* node, const std::string& where, bool linked) const {
+    if (!node) return {};
+    if (!node->is_table()) fail(where, "expected a table of case keys");
+    std::vector<Axis> out;
+    for (const auto& [name, value] : entries(*node->as_table(), where + ".")) {
+      const toml::array* list = value->as_array();
+      if (find_key(name)->type == KeyType::RealList)
+        fail(where + "." + name, "is a list key; only scalar keys can be swept");
+      if (!list || list->empty()) fail(where + "." + name, "expected a non-empty list of values");
+      for (const auto& element : *list)
+        if (element.is_array() || element.is_table())
+          fail(where + "." + name, "expected a list of scalar values");
+      if (linked && !out.empty()) {
+        if (list->size() != out.front().size())
+          fail(where + "." + name, fmt::format("has {} values but {} has {}; linked lists vary together",
+                                               list->size(), out.front().keys.front(), out.front().size()));
+        out.front().keys.push_back(name);
+        out.front().values.push_back(*list);
+      } else {
+        out.push_back({{name}, {*list}});
+      }
+    }
+    return out;
+  }
+
+  // A [[grid]] table.
+  Grid grid(const toml::table& table, const std::string& where, std::string name) const {
+    for (const auto& [key, value] : table)
+      if (key != "set" && key != "axes" && key != "linked" && key != "name")
+        fail(where + std::string(key.str()), "unknown sweep key (expected set, axes, linked, name)");
+    if (const auto* named = table.get("name")) {
+      if (!named->is_string()) fail(where + "name", "expected a string");
+      name = named->as_string()->get();
+    }
+    return grid(table.get("set"), table.get("axes"), table.get("linked"), where, std::move(name));
+  }
+
+  // A grid from its set/axes/linked tables (any may be absent); `where` prefixes key names in errors.
+  Grid grid(const toml::node* set, const toml::node* axes_table, const toml::node* linked_table,
+            const std::string& where, std::string name) const {
+    Grid g;
+    g.name = std::move(name);
+    g.set = flatten(set, where + "set");
+    g.axes = axes(axes_table, where + "axes", false);
+    auto linked = axes(linked_table, where + "linked", true);
+    g.axes.insert(g.axes.end(), linked.begin(), linked.end());
+    for (const auto& axis : g.axes)
+      for (const auto& key : axis.keys)
+        if (std::count_if(g.axes.begin(), g.axes.end(), [&](const Axis& a) {
+              return std::find(a.keys.begin(), a.keys.end(), key) != a.keys.end();
+            }) > 1)
+          fail(where + "axes." + key, "swept twice in the same grid");
+    return g;
+  }
+
+ private:
+  void collect(const toml::table& table, const std::string& prefix, const std::string& where,
+               std::vector<std::pair<std::string, const toml::node*>>& out) const {
+    for (const auto& [name, node] : table) {
+      const std::string key = prefix + std::string(name.str());
+      if (node.is_table() && !find_key(key)) {
+        collect(*node.as_table(), key + ".", where, out);
+        continue;
+      }
+      case_key(where, key);
+      out.emplace_back(key, &node);
+    }
+  }
+
+  fs::path file_;
+};
+
+// The base case's own keys, flattened the same way (its errors are the case loader's).
+FlatTable flatten_case(const toml::table& table, const std::string& prefix = "") {
+  FlatTable flat;
+  for (const auto& [name, node] : table) {
+    const std::string key = prefix + std::string(name.str());
+    if (node.is_table() && !find_key(key)) {
+      for (auto&& [k, v] : flatten_case(*node.as_table(), key + ".")) flat.insert_or_assign(k, v);
+      continue;
+    }
+    flat.insert_or_assign(key, node);
+  }
+  return flat;
+}
+
+// A value as TOML text; reals in the shortest form that reads back to the same double.
+std::string toml_value(const toml::node& node) {
+  if (const auto* real = node.as_floating_point()) {
+    std::string text = fmt::format("{}", real->get());
+    if (text.find_first_of(".eEn") == std::string::npos) text += ".0";  // keep it a TOML float
+    return text;
+  }
+  if (const auto* list = node.as_array()) {
+    std::vector<std::string> items;
+    for (const auto& element : *list) items.push_back(toml_value(element));
+    return fmt::format("[{}]", fmt::join(items, ", "));
+  }
+  std::ostringstream out;
+  node.visit([&](const auto& value) { out << value; });
+  return out.str();
+}
+
+// The flat case as a TOML document, one [section] per key prefix.
+std::string case_document(const FlatTable& flat, const std::string& header) {
+  std::map<std::string, std::vector<std::string>> sections;
+  for (const auto& [key, value] : flat) {
+    const std::string k(key.str());
+    const auto dot = k.rfind('.');
+    sections[k.substr(0, dot)].push_back(fmt::format("{} = {}", k.substr(dot + 1), toml_value(value)));
+  }
+  std::string text = header;
+  for (const auto& [section, lines] : sections) text += fmt::format("\n[{}]\n{}\n", section, fmt::join(lines, "\n"));
+  return text;
+}
+
+nlohmann::json json_value(const toml::node& node) {
+  if (const auto* v = node.as_floating_point()) return v->get();
+  if (const auto* v = node.as_integer()) return v->get();
+  if (const auto* v = node.as_boolean()) return v->get();
+  if (const auto* v = node.as_string()) return v->get();
+  return nullptr;
+}
+
+nlohmann::json json_default(const KeySpec& spec) {
+  return std::visit(
+      [](const auto& v) -> nlohmann::json {
+        if constexpr (std::is_same_v<std::decay_t<decltype(v)>, std::monostate>) return nullptr;
+        else return v;
+      },
+      spec.fallback);
+}
+
+// Directory-name text of a value: numbers in shortest form, other text reduced to safe characters.
+std::string name_text(const nlohmann::json& value) {
+  if (value.is_null()) return "none";
+  if (value.is_number_float()) return fmt::format("{}", value.get<double>());
+  std::string text = value.is_string() ? value.get<std::string>() : value.dump();
+  for (char& ch : text)
+    if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '.' && ch != '-' && ch != '+') ch = '-';
+  return text;
+}
+
+// Short column labels for names: the key's last part unless two swept keys share it.
+std::vector<std::string> labels(const std::vector<std::string>& keys) {
+  std::map<std::string, int> uses;
+  auto leaf = [](const std::string& key) { return key.substr(key.rfind('.') + 1); };
+  for (const auto& key : keys) ++uses[leaf(key)];
+  std::vector<std::string> out;
+  for (const auto& key : keys) out.push_back(uses[leaf(key)] > 1 ? key : leaf(key));
+  return out;
+}
+
+std::vector<RuleViolation> scene_violations(const Case& c) {
+  if (c.text("scene.kind") != "brain-tip" || !c.path("scene.mesh_file").empty()) return {};
+  return brain_tip_scene_violations(c, needle_tip_from_case(c));
+}
+
+// scene.mesh_file made absolute: relative to the file that named it.
+void absolute_mesh_file(FlatTable& flat, const fs::path& relative_to) {
+  if (const auto* file = flat.get_as<std::string>("scene.mesh_file")) {
+    const fs::path path(file->get());
+    if (!path.empty() && path.is_relative()) flat.insert_or_assign("scene.mesh_file", (relative_to / path).string());
+  }
+}
+
+void add_unique(std::vector<std::string>& list, const std::string& item) {
+  if (std::find(list.begin(), list.end(), item) == list.end()) list.push_back(item);
+}
+
+}  // namespace
+
+SweepPlan load_sweep(const fs::path& sweep_file) {
+  const SweepFile file(sweep_file);
+  const toml::table root = file.parse();
+  for (const auto& [key, value] : root)
+    if (key != "base" && key != "set" && key != "axes" && key != "linked" && key != "grid")
+      file.fail(std::string(key.str()), "unknown sweep key (expected base, set, axes, linked, grid)");
+
+  SweepPlan plan;
+  plan.sweep_file = sweep_file;
+  const auto* base = root.get_as<std::string>("base");
+  if (!base) file.fail("base", "required: the base case file, relative to the sweep file");
+  const fs::path sweep_dir = fs::absolute(sweep_file).parent_path();
+  plan.base_case = (sweep_dir / base->get()).lexically_normal();
+  FlatTable base_flat;
+  try {
+    base_flat = flatten_case(toml::parse_file(plan.base_case.string()));
+  } catch (const toml::parse_error& e) {
+    if (!fs::exists(plan.base_case)) file.fail("base", fmt::format("cannot open {}", plan.base_case.string()));
+    throw CaseError(fmt::format("{}:{}:{}: TOML syntax error: {}", plan.base_case.string(), e.source().begin.line,
+                                e.source().begin.column, e.description()));
+  }
+  absolute_mesh_file(base_flat, plan.base_case.parent_path());
+
+  FlatTable fixed = file.flatten(root.get("set"), "set");
+  absolute_mesh_file(fixed, sweep_dir);
+
+  std::vector<Grid> grids;
+  if (root.contains("axes") || root.contains("linked"))
+    grids.push_back(file.grid(nullptr, root.get("axes"), root.get("linked"), "", "main"));
+  if (const auto* list = root.get("grid")) {
+    if (!list->is_array_of_tables()) file.fail("grid", "expected [[grid]] tables");
+    std::size_t index = 0;
+    for (const auto& table : *list->as_array()) {
+      const std::string where = fmt::format("grid[{}].", index);
+      grids.push_back(file.grid(*table.as_table(), where, fmt::format("grid{}", ++index)));
+    }
+  }
+  if (grids.empty()) file.fail("axes", "no design points: give [axes], [linked] or [[grid]] tables");
+
+  for (const auto& g : grids) {
+    for (const auto& [key, value] : g.set) add_unique(plan.swept_keys, std::string(key.str()));
+    for (const auto& axis : g.axes)
+      for (const auto& key : axis.keys) add_unique(plan.swept_keys, key);
+  }
+  const auto key_labels = labels(plan.swept_keys);
+  const std::string header = fmt::format("# Design point of the sweep {} (base case {}).\n", sweep_file.string(),
+                                         plan.base_case.string());
+
+  std::map<std::string, std::size_t> by_name;
+  for (const auto& g : grids) {
+    std::size_t count = 1;
+    for (const auto& axis : g.axes) count *= axis.size();
+    for (std::size_t flat_index = 0; flat_index < count; ++flat_index) {
+      FlatTable point = base_flat;
+      for (const auto& [key, value] : fixed) point.insert_or_assign(key, value);
+      FlatTable assigned = g.set;
+      std::size_t rest = flat_index;
+      for (auto axis = g.axes.rbegin(); axis != g.axes.rend(); ++axis) {  // last axis varies fastest
+        const std::size_t i = rest % axis->size();
+        rest /= axis->size();
+        for (std::size_t k = 0; k < axis->keys.size(); ++k) assigned.insert_or_assign(axis->keys[k], axis->values[k][i]);
+      }
+      absolute_mesh_file(assigned, sweep_dir);
+      for (const auto& [key, value] : assigned) point.insert_or_assign(key, value);
+
+      DesignPoint p;
+      p.grids = {g.name};
+      std::vector<std::string> parts;
+      for (std::size_t k = 0; k < plan.swept_keys.size(); ++k) {
+        const std::string& key = plan.swept_keys[k];
+        const toml::node* given = point.get(key);
+        p.values[key] = given ? json_value(*given) : json_default(*find_key(key));
+        parts.push_back(key_labels[k] + "=" + name_text(p.values[key]));
+      }
+      p.name = fmt::format("{}", fmt::join(parts, "__"));
+      p.case_text = case_document(point, header);
+      try {
+        const Case c = Case::parse(p.case_text, fmt::format("{} (point {})", sweep_file.string(), p.name));
+        p.resolved = c.to_json();
+        p.violations = scene_violations(c);
+      } catch (const CaseError& e) {
+        p.violations = {{"case", e.what()}};
+      }
+
+      const auto [it, inserted] = by_name.emplace(p.name, plan.points.size());
+      if (inserted) {
+        plan.points.push_back(std::move(p));
+        continue;
+      }
+      DesignPoint& same = plan.points[it->second];
+      if (same.resolved != p.resolved || (same.resolved.is_null() && same.case_text != p.case_text))
+        file.fail(plan.swept_keys.front(), fmt::format("two different design points share the directory name '{}'", p.name));
+      add_unique(same.grids, g.name);
+    }
+  }
+  return plan;
+}
+
+}  // namespace needlefem::sweep

@@ -1,0 +1,60 @@
+// A design sweep (SWEEP.toml) expanded into design points.
+//
+// SWEEP.toml:
+//   base = "../table1/r0.50_a20_f0.25.toml"   # the base case, relative to the sweep file
+//   [set]                                       # fixed overrides for every point
+//   "tissue.core_element_mm" = 0.4
+//   [axes]                                      # a grid: the Cartesian product of these lists
+//   "needle.radius_mm" = [0.32, 0.5, 0.83]
+//   [linked]                                    # lists of equal length that vary together: one axis
+//   "motion.insertion_speed_mm_per_s" = [0.5, 1, 2]
+//   "motion.rotation_speed_deg_per_s" = [90, 180, 360]
+//   [[grid]]                                    # further grids, each with its own set/axes/linked
+//   name = "rate-study"
+//   set = { "needle.fillet_mm" = 0.25 }
+//   linked = { ... }
+// The top-level [axes]/[linked] form the grid "main" (when given); the sweep is the union of
+// its grids. Keys are case keys (`needlefem keys`), quoted ("needle.radius_mm") or as TOML
+// dotted keys; any scalar key may be swept. scene.mesh_file values are relative to the file
+// that gives them.
+//
+// Each point is base + [set] + its grid's set + its axis values, merged as TOML tables (so
+// the point's case gives exactly the keys a hand-written case would) and validated by the
+// case loader and the geometry rules (geometry/needle_tip.hpp). Its directory name lists the
+// values of every swept key (the keys that any grid varies or sets), so points of different
+// grids describing the same case share one directory and one row.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "geometry/needle_tip.hpp"
+
+namespace needlefem::sweep {
+
+struct DesignPoint {
+  std::string name;                       // directory name under the sweep's output folder
+  std::vector<std::string> grids;         // grids that contain it
+  nlohmann::json values;                  // swept key -> the point's value (resolved when valid)
+  std::string case_text;                  // the point's case file (TOML)
+  nlohmann::json resolved;                // Case::to_json() of the point: what its summary.json echoes
+  std::vector<RuleViolation> violations;  // non-empty: impossible, not run (rule "case" for key errors)
+  bool valid() const { return violations.empty(); }
+};
+
+struct SweepPlan {
+  std::filesystem::path sweep_file;
+  std::filesystem::path base_case;
+  std::vector<std::string> swept_keys;  // table columns, in order of first appearance
+  std::vector<DesignPoint> points;      // in grid order, each axis varying fastest last
+};
+
+// Reads and expands a sweep file. Errors in the sweep file itself (syntax, unknown case keys,
+// non-scalar keys, unequal linked lists) throw CaseError "FILE: key 'K': reason"; errors of
+// single points are recorded in their violations.
+SweepPlan load_sweep(const std::filesystem::path& sweep_file);
+
+}  // namespace needlefem::sweep

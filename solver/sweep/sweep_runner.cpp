@@ -1,0 +1,235 @@
+#include "sweep/sweep_runner.hpp"
+
+#include <fcntl.h>
+#include <sys/prctl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <csignal>
+#include <cstdlib>
+#include <cstring>
+#include <deque>
+#include <fstream>
+#include <map>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "sweep/sweep_table.hpp"
+
+extern char** environ;
+
+namespace needlefem::sweep {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct LauncherRank {
+  int rank = 0, size = 1;
+  bool launched = false;
+};
+
+// The rank an MPI launcher gave this process, from its environment (OpenMPI, then PMI as set
+// by MPICH's hydra, Intel MPI and `srun --mpi=pmi2`).
+LauncherRank launcher_rank() {
+  for (const auto& [rank, size] : {std::pair{"OMPI_COMM_WORLD_RANK", "OMPI_COMM_WORLD_SIZE"}, std::pair{"PMI_RANK", "PMI_SIZE"}}) {
+    const char* r = std::getenv(rank);
+    const char* s = std::getenv(size);
+    if (r && s) return {std::atoi(r), std::max(1, std::atoi(s)), true};
+  }
+  return {};
+}
+
+// The environment for children: under a launcher, without its variables (they would make the
+// child's MPI_Init join the launcher's job instead of starting a singleton).
+std::vector<std::string> child_environment(bool launched) {
+  std::vector<std::string> out;
+  for (char** entry = environ; *entry; ++entry) {
+    const std::string variable(*entry);
+    const bool launcher = variable.starts_with("OMPI_") || variable.starts_with("PMIX_") ||
+                          variable.starts_with("PMI_") || variable.starts_with("HYDRA_") ||
+                          variable.starts_with("MPI_LOCAL");
+    const bool keep = variable.starts_with("OMPI_ALLOW_RUN_AS_ROOT");  // the singleton needs it as root
+    if (!launched || !launcher || keep) out.push_back(variable);
+  }
+  return out;
+}
+
+std::vector<char*> c_array(std::vector<std::string>& texts) {
+  std::vector<char*> out;
+  for (auto& t : texts) out.push_back(t.data());
+  out.push_back(nullptr);
+  return out;
+}
+
+// Starts `argv` with stdout and stderr to `log`; the child dies with this process.
+pid_t start_child(std::vector<std::string> argv, std::vector<std::string> environment, const fs::path& log) {
+  auto args = c_array(argv);
+  auto env = c_array(environment);
+  const int log_fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (log_fd < 0) throw std::runtime_error(fmt::format("cannot write {}: {}", log.string(), std::strerror(errno)));
+  const pid_t parent = ::getpid();
+  const pid_t pid = ::fork();
+  if (pid == 0) {  // only async-signal-safe calls from here to exec
+    if (::prctl(PR_SET_PDEATHSIG, SIGKILL) != 0 || ::getppid() != parent) ::_exit(127);
+    ::dup2(log_fd, STDOUT_FILENO);
+    ::dup2(log_fd, STDERR_FILENO);
+    ::execve(args[0], args.data(), env.data());
+    ::_exit(127);
+  }
+  ::close(log_fd);
+  if (pid < 0) throw std::runtime_error(fmt::format("cannot start a run: {}", std::strerror(errno)));
+  return pid;
+}
+
+// The reason a run failed, from its log: the last "needlefem: error:" line, else the last line.
+std::string last_error(const fs::path& log, int wait_status) {
+  std::ifstream in(log);
+  std::string line, error, last;
+  const std::string prefix = "needlefem: error: ";
+  while (std::getline(in, line)) {
+    if (line.empty()) continue;
+    last = line;
+    if (line.starts_with(prefix)) error = line.substr(prefix.size());
+  }
+  const std::string how = WIFSIGNALED(wait_status) ? fmt::format("killed by signal {}", WTERMSIG(wait_status))
+                                                   : fmt::format("exit status {}", WEXITSTATUS(wait_status));
+  if (!error.empty()) return error;
+  return last.empty() ? how : fmt::format("{} ({})", how, last);
+}
+
+std::string duration(double seconds) {
+  const long s = std::lround(seconds);
+  if (s < 60) return fmt::format("{:.1f} s", seconds);
+  if (s < 3600) return fmt::format("{}m{:02}s", s / 60, s % 60);
+  return fmt::format("{}h{:02}m", s / 3600, s % 3600 / 60);
+}
+
+class Progress {
+ public:
+  Progress(std::FILE* stream, const LauncherRank& rank, std::size_t total, std::size_t done)
+      : stream_(stream), total_(total), done_(done),
+        prefix_(rank.size > 1 ? fmt::format("sweep[{}/{}]", rank.rank, rank.size) : "sweep") {}
+
+  void line(const std::string& text) const {
+    if (!stream_) return;
+    fmt::print(stream_, "{}: {}\n", prefix_, text);
+    std::fflush(stream_);
+  }
+  void finished(const std::string& what, std::size_t still_to_run) {
+    ++done_;
+    ++finished_;
+    const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
+    line(fmt::format("[{}/{}] {} | elapsed {}, ETA {}", done_, total_, what, duration(elapsed),
+                     duration(elapsed / static_cast<double>(finished_) * static_cast<double>(still_to_run))));
+  }
+
+ private:
+  std::FILE* stream_;
+  std::size_t total_, done_, finished_ = 0;
+  std::string prefix_;
+  Clock::time_point start_ = Clock::now();
+};
+
+std::string maxima_text(const nlohmann::json& summary) {
+  const auto value = [&](const char* key) { return summary["max"].value(key, nlohmann::json::object()).value("value", 0.0); };
+  if (!summary.contains("max")) return "";
+  return fmt::format(" (max log strain {:.4g}, strain rate {:.4g} 1/s, von Mises {:.4g} Pa)", value("log_strain"),
+                     value("strain_rate_per_s"), value("von_mises_pa"));
+}
+
+}  // namespace
+
+SweepOutcome run_sweep(const SweepPlan& plan, const SweepOptions& options) {
+  if (options.jobs < 1) throw std::invalid_argument("sweep: --jobs must be at least 1");
+  const LauncherRank rank = launcher_rank();
+  SweepOutcome outcome;
+  outcome.rank = rank.rank;
+  outcome.ranks = rank.size;
+  fs::create_directories(options.out_dir);
+
+  std::deque<std::size_t> queue;
+  std::size_t valid_index = 0;
+  for (std::size_t i = 0; i < plan.points.size(); ++i) {
+    const DesignPoint& p = plan.points[i];
+    if (!p.valid()) {
+      ++outcome.impossible;
+      continue;
+    }
+    if (valid_index++ % static_cast<std::size_t>(rank.size) != static_cast<std::size_t>(rank.rank)) continue;
+    ++outcome.total;
+    const std::string status = read_point(p, options.out_dir).status;
+    if (status == "completed" || (status == "failed" && !options.retry_failed)) ++outcome.already_done;
+    else queue.push_back(i);
+  }
+
+  Progress progress(options.progress, rank, outcome.total, outcome.already_done);
+  if (rank.rank == 0)
+    for (const auto& p : plan.points)
+      for (const auto& v : p.violations) progress.line(fmt::format("impossible, not run: {}: rule '{}': {}", p.name, v.rule, v.message));
+  progress.line(fmt::format("{} design points ({} impossible); {} to run here, {} already done, {} to run with {} job{}",
+                            plan.points.size(), outcome.impossible, outcome.total, outcome.already_done, queue.size(),
+                            options.jobs, options.jobs > 1 ? "s" : ""));
+  write_tables(plan, options.out_dir);
+
+  const auto environment = child_environment(rank.launched);
+  struct Running {
+    std::size_t point;
+    Clock::time_point start;
+  };
+  std::map<pid_t, Running> running;
+  while (!queue.empty() || !running.empty()) {
+    while (!queue.empty() && running.size() < static_cast<std::size_t>(options.jobs)) {
+      const DesignPoint& p = plan.points[queue.front()];
+      const fs::path dir = point_directory(options.out_dir, p);
+      fs::create_directories(dir);
+      fs::remove(dir / "summary.json");
+      write_file_atomically(dir / "case.toml", p.case_text);
+      std::vector<std::string> argv{options.executable.string(), "run", (dir / "case.toml").string(), "--out", dir.string()};
+      if (!options.backend_options.empty()) {
+        argv.push_back("--");
+        argv.insert(argv.end(), options.backend_options.begin(), options.backend_options.end());
+      }
+      running[start_child(argv, environment, dir / "run.log")] = {queue.front(), Clock::now()};
+      queue.pop_front();
+      progress.line(fmt::format("started {}", p.name));
+    }
+    int status = 0;
+    const pid_t pid = ::waitpid(-1, &status, 0);
+    if (pid < 0) {
+      if (errno == EINTR) continue;
+      throw std::runtime_error(fmt::format("sweep: waiting for runs: {}", std::strerror(errno)));
+    }
+    const auto it = running.find(pid);
+    if (it == running.end()) continue;
+    const DesignPoint& p = plan.points[it->second.point];
+    const double seconds = std::chrono::duration<double>(Clock::now() - it->second.start).count();
+    running.erase(it);
+
+    const fs::path dir = point_directory(options.out_dir, p);
+    PointRecord record = read_point(p, options.out_dir);
+    if (record.status == "pending") {  // no summary of its own: record the failure for it
+      record = {"failed", nullptr, last_error(dir / "run.log", status)};
+      write_file_atomically(dir / "summary.json",
+                            nlohmann::json{{"status", "failed"}, {"error", record.error}, {"case", p.resolved}}.dump(2) + "\n");
+    }
+    if (record.status == "completed") ++outcome.completed;
+    else ++outcome.failed;
+    write_tables(plan, options.out_dir);
+    progress.finished(record.status == "completed"
+                          ? fmt::format("completed {} in {}{}", p.name, duration(seconds), maxima_text(record.summary))
+                          : fmt::format("FAILED {} after {}: {}", p.name, duration(seconds), record.error),
+                      queue.size() + running.size());
+  }
+  progress.line(fmt::format("finished: {} completed, {} failed, {} already done, {} impossible; tables {} and {}",
+                            outcome.completed, outcome.failed, outcome.already_done, outcome.impossible,
+                            (options.out_dir / "sweep.csv").string(), (options.out_dir / "sweep.h5").string()));
+  return outcome;
+}
+
+}  // namespace needlefem::sweep
