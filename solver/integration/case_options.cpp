@@ -10,6 +10,9 @@ IdaOptions ida_options_from_case(const Case& c) {
   options.initial_step = c.real("integration.initial_step_s");
   options.max_step = c.real("integration.max_step_s");
   options.max_newton_iterations = static_cast<int>(c.integer("integration.max_newton_iterations"));
+  options.newton = c.text("integration.newton") == "krylov" ? NewtonMethod::krylov : NewtonMethod::modified;
+  options.krylov_dimension = static_cast<int>(c.integer("integration.krylov_dimension"));
+  options.newton_matrix_cj_change = c.real("integration.newton_matrix_cj_change");
   options.suppress_algebraic_error = c.flag("integration.suppress_algebraic_error");
   options.fixed_step = c.maybe_real("integration.fixed_step_s");
   return options;

@@ -1,5 +1,6 @@
 #include "integration/ida_integrator.hpp"
 
+#include <cmath>
 #include <exception>
 #include <stdexcept>
 #include <string>
@@ -7,6 +8,7 @@
 #include <fmt/core.h>
 #include <ida/ida.h>
 #include <nvector/nvector_petsc.h>
+#include <sunlinsol/sunlinsol_spgmr.h>
 #include <sundials/sundials_context.h>
 
 #include "integration/dae_linear_solver.hpp"
@@ -20,6 +22,15 @@ namespace {
 constexpr double kNewtonConvergenceCoefficient = 0.33;
 
 Vec petsc_vector(N_Vector v) { return N_VGetVector_Petsc(v); }
+
+// A work vector shaped like another, destroyed with its scope.
+struct ScratchVec {
+  explicit ScratchVec(Vec like) { petsc_check(VecDuplicate(like, &v), "VecDuplicate"); }
+  ~ScratchVec() { VecDestroy(&v); }
+  ScratchVec(const ScratchVec&) = delete;
+  ScratchVec& operator=(const ScratchVec&) = delete;
+  Vec v = nullptr;
+};
 
 int residual_callback(realtype t, N_Vector y, N_Vector ydot, N_Vector F, void* user_data) {
   auto& callbacks = *static_cast<DaeCallbackContext*>(user_data);
@@ -36,6 +47,23 @@ int jacobian_callback(realtype t, realtype cj, N_Vector y, N_Vector ydot, N_Vect
   auto& callbacks = *static_cast<DaeCallbackContext*>(user_data);
   try {
     return to_sundials_code(callbacks.system.setup_jacobian(t, petsc_vector(y), petsc_vector(ydot), cj));
+  } catch (const std::exception& e) {
+    callbacks.last_exception = e.what();
+    return -1;
+  }
+}
+
+// Newton-Krylov: the system's factored Newton matrix, refreshed only when IDA asks, is the
+// preconditioner of GMRES on IDA's difference-quotient products with the current Jacobian.
+int preconditioner_setup(realtype t, N_Vector y, N_Vector ydot, N_Vector, realtype cj, void* user_data) {
+  return jacobian_callback(t, cj, y, ydot, nullptr, nullptr, user_data, nullptr, nullptr, nullptr);
+}
+
+int preconditioner_solve(realtype, N_Vector, N_Vector, N_Vector, N_Vector r, N_Vector z, realtype, realtype,
+                         void* user_data) {
+  auto& callbacks = *static_cast<DaeCallbackContext*>(user_data);
+  try {
+    return to_sundials_code(callbacks.system.solve_jacobian(petsc_vector(r), petsc_vector(z)));
   } catch (const std::exception& e) {
     callbacks.last_exception = e.what();
     return -1;
@@ -68,6 +96,7 @@ struct IdaIntegrator::Impl {
     N_VDestroy(ydot_nv);
     VecDestroy(&y);
     VecDestroy(&ydot);
+    VecDestroy(&absolute_tolerances);
     if (context) SUNContext_Free(&context);
   }
 
@@ -98,6 +127,7 @@ struct IdaIntegrator::Impl {
   SUNMatrix jacobian = nullptr;
   SUNLinearSolver linear_solver = nullptr;
   void* ida = nullptr;
+  Vec absolute_tolerances = nullptr;  // scaled as given to IDA; null: options.absolute_tolerance
 };
 
 IdaIntegrator::IdaIntegrator(DaeSystem& system, const IdaOptions& options, double t0, MPI_Comm comm)
@@ -139,13 +169,21 @@ IdaIntegrator::IdaIntegrator(DaeSystem& system, const IdaOptions& options, doubl
     ida_check(flag, "IDASetId");
   }
 
-  m.jacobian = make_jacobian_handle(m.context);
-  m.linear_solver = make_dae_linear_solver(m.context, m.callbacks);
-  if (!m.jacobian || !m.linear_solver) throw std::runtime_error("creating the IDA linear solver failed");
-  ida_check(IDASetLinearSolver(m.ida, m.linear_solver, m.jacobian), "IDASetLinearSolver");
-  ida_check(IDASetJacFn(m.ida, jacobian_callback), "IDASetJacFn");
+  if (options.newton == NewtonMethod::krylov) {
+    m.linear_solver = SUNLinSol_SPGMR(m.y_nv, SUN_PREC_LEFT, options.krylov_dimension, m.context);
+    if (!m.linear_solver) throw std::runtime_error("creating IDA's GMRES solver failed");
+    ida_check(IDASetLinearSolver(m.ida, m.linear_solver, nullptr), "IDASetLinearSolver");
+    ida_check(IDASetPreconditioner(m.ida, preconditioner_setup, preconditioner_solve), "IDASetPreconditioner");
+  } else {
+    m.jacobian = make_jacobian_handle(m.context);
+    m.linear_solver = make_dae_linear_solver(m.context, m.callbacks);
+    if (!m.jacobian || !m.linear_solver) throw std::runtime_error("creating the IDA linear solver failed");
+    ida_check(IDASetLinearSolver(m.ida, m.linear_solver, m.jacobian), "IDASetLinearSolver");
+    ida_check(IDASetJacFn(m.ida, jacobian_callback), "IDASetJacFn");
+  }
 
   ida_check(IDASetMaxOrd(m.ida, options.max_order), "IDASetMaxOrd");
+  ida_check(IDASetDeltaCjLSetup(m.ida, options.newton_matrix_cj_change), "IDASetDeltaCjLSetup");
   ida_check(IDASetMaxNonlinIters(m.ida, options.max_newton_iterations), "IDASetMaxNonlinIters");
   ida_check(IDASetMaxNumSteps(m.ida, options.max_steps_per_advance), "IDASetMaxNumSteps");
   ida_check(IDASetSuppressAlg(m.ida, options.suppress_algebraic_error ? SUNTRUE : SUNFALSE), "IDASetSuppressAlg");
@@ -169,8 +207,56 @@ void IdaIntegrator::set_absolute_tolerances(Vec absolute_tolerances) {
   N_Vector scaled_nv = N_VMake_Petsc(scaled, m.context);
   const int flag = IDASVtolerances(m.ida, m.options.relative_tolerance * m.tolerance_scale(), scaled_nv);
   N_VDestroy(scaled_nv);
-  VecDestroy(&scaled);
+  VecDestroy(&m.absolute_tolerances);
+  m.absolute_tolerances = scaled;
   ida_check(flag, "IDASVtolerances");
+}
+
+IdaIntegrator::InitialRates IdaIntegrator::make_initial_rates_consistent(double probe, double probe_horizon,
+                                                                        int max_iterations) {
+  Impl& m = *impl_;
+  if (!(probe > 0.0) || !(probe_horizon > 0.0))
+    throw std::invalid_argument("make_initial_rates_consistent: probe step and horizon must be positive");
+  DaeSystem& system = m.callbacks.system;
+  const double t_probe = m.time + probe;
+  const ScratchVec given_rates(m.y), y_probe(m.y), residual(m.y), update(m.y), weights(m.y);
+  petsc_check(VecCopy(m.ydot, given_rates.v), "VecCopy");
+  // IDA's error weights at y0, W_i = 1 / (rtol |y_i| + atol_i).
+  petsc_check(VecCopy(m.y, weights.v), "VecCopy");
+  petsc_check(VecAbs(weights.v), "VecAbs");
+  petsc_check(VecScale(weights.v, m.options.relative_tolerance * m.tolerance_scale()), "VecScale");
+  if (m.absolute_tolerances)
+    petsc_check(VecAXPY(weights.v, 1.0, m.absolute_tolerances), "VecAXPY");
+  else
+    petsc_check(VecShift(weights.v, m.options.absolute_tolerance * m.tolerance_scale()), "VecShift");
+  petsc_check(VecReciprocal(weights.v), "VecReciprocal");
+  PetscInt size = 0;
+  petsc_check(VecGetSize(m.y, &size), "VecGetSize");
+
+  InitialRates result;
+  while (result.iterations < max_iterations) {
+    ++result.iterations;
+    petsc_check(VecWAXPY(y_probe.v, probe, m.ydot, m.y), "VecWAXPY");  // y0 + probe y'
+    if (system.residual(t_probe, y_probe.v, m.ydot, residual.v) != DaeStatus::ok) break;
+    if (result.iterations == 1 && system.setup_jacobian(t_probe, y_probe.v, m.ydot, 1.0 / probe) != DaeStatus::ok)
+      break;
+    // dF/dy' along the probe step is probe J(cj = 1/probe): the y' update is -J⁻¹F / probe.
+    if (system.solve_jacobian(residual.v, update.v) != DaeStatus::ok) break;
+    petsc_check(VecAXPY(m.ydot, -1.0 / probe, update.v), "VecAXPY");
+    // Size of the update as the change it makes to y over the horizon, in IDA's norm.
+    petsc_check(VecScale(update.v, probe_horizon / probe), "VecScale");
+    petsc_check(VecPointwiseMult(update.v, update.v, weights.v), "VecPointwiseMult");
+    double norm = 0.0;
+    petsc_check(VecNorm(update.v, NORM_2, &norm), "VecNorm");
+    result.last_update = norm / std::sqrt(static_cast<double>(size));
+    if (result.last_update < 1e-3) {
+      result.converged = true;
+      break;
+    }
+  }
+  if (!result.converged) petsc_check(VecCopy(given_rates.v, m.ydot), "VecCopy");
+  ida_check(IDAReInit(m.ida, m.time, m.y_nv, m.ydot_nv), "IDAReInit");
+  return result;
 }
 
 void IdaIntegrator::make_initial_state_consistent(double t_first_output) {
@@ -215,11 +301,16 @@ IdaCounters IdaIntegrator::counters() const {
   ida_check(IDAGetNumSteps(m.ida, &c.steps), "IDAGetNumSteps");
   ida_check(IDAGetNumResEvals(m.ida, &c.residual_evaluations), "IDAGetNumResEvals");
   ida_check(IDAGetNumNonlinSolvIters(m.ida, &c.newton_iterations), "IDAGetNumNonlinSolvIters");
-  ida_check(IDAGetNumJacEvals(m.ida, &c.jacobian_setups), "IDAGetNumJacEvals");
+  if (m.options.newton == NewtonMethod::krylov) {
+    ida_check(IDAGetNumPrecEvals(m.ida, &c.jacobian_setups), "IDAGetNumPrecEvals");
+    ida_check(IDAGetNumLinIters(m.ida, &c.linear_iterations), "IDAGetNumLinIters");
+  } else {
+    ida_check(IDAGetNumJacEvals(m.ida, &c.jacobian_setups), "IDAGetNumJacEvals");
+    c.linear_iterations = m.callbacks.system.linear_iterations();
+  }
   ida_check(IDAGetNumLinSolvSetups(m.ida, &c.linear_solver_setups), "IDAGetNumLinSolvSetups");
   ida_check(IDAGetNumErrTestFails(m.ida, &c.error_test_failures), "IDAGetNumErrTestFails");
   ida_check(IDAGetNumNonlinSolvConvFails(m.ida, &c.newton_convergence_failures), "IDAGetNumNonlinSolvConvFails");
-  c.linear_iterations = m.callbacks.system.linear_iterations();
   ida_check(IDAGetLastStep(m.ida, &c.last_step), "IDAGetLastStep");
   ida_check(IDAGetLastOrder(m.ida, &c.last_order), "IDAGetLastOrder");
   return c;

@@ -132,6 +132,7 @@ struct RunRecord {
   double mesh_s = 0.0, integration_s = 0.0, output_s = 0.0;
 };
 
+  IdaIntegrator::InitialRates initial_rates;  // the probe step giving y'(t0)
 nlohmann::json summary_json(const Case& c, const material::Material* material, const SceneModel* scene,
                             const RunRecord& record, double wall_s) {
   nlohmann::json s;
@@ -180,6 +181,8 @@ void print_progress(std::FILE* stream, double t, double end, const IdaCounters& 
   const double eta = t > 0.0 ? integration_s * (end - t) / t : 0.0;
   fmt::print(stream, "run: t = {:.4g} s ({:3.0f}%)  steps {}  Newton its {}  Jacobians {}  wall {:.1f} s  ETA {:.1f} s\n",
              t, end > 0.0 ? 100.0 * t / end : 100.0, k.steps, k.newton_iterations, k.jacobian_setups, integration_s,
+                 {"initial_rates", {{"converged", record.initial_rates.converged},
+                                    {"iterations", record.initial_rates.iterations}}},
              eta);
   std::fflush(stream);
 }
@@ -239,6 +242,23 @@ nlohmann::json run_case(const Case& c, const RunOptions& options) {
       record.elastic_energy_j = system->elastic_energy(integrator.state());
       if (record.elastic_energy_j > 0.0)
         record.max_kinetic_to_elastic = std::max(record.max_kinetic_to_elastic, f.kinetic_energy / record.elastic_energy_j);
+    {
+      Vec atol = nullptr;
+      petsc_check(VecDuplicate(integrator.state(), &atol), "VecDuplicate");
+      system->absolute_tolerances(atol, c.real("integration.absolute_tolerance"),
+                                  c.real("integration.viscous_stress_absolute_tolerance_pa"));
+      integrator.set_absolute_tolerances(atol);
+      VecDestroy(&atol);
+    }
+    if (times.size() > 1) {
+      // The needle starts moving at t0 while the tissue rests: start IDA from the rates of a
+      // probe step a millionth of the first output interval long (ida_integrator.hpp).
+      const double horizon = times[1] - times[0];
+      record.initial_rates = integrator.make_initial_rates_consistent(1e-6 * horizon, horizon);
+      if (!record.initial_rates.converged && options.progress)
+        fmt::print(options.progress, "run: warning: the probe step for consistent initial rates did not converge "
+                   "(last update {:.3g}); IDA starts from zero rates\n", record.initial_rates.last_update);
+    }
       record.counters = integrator.counters();
       history.row(t, record.counters, f, record.reactions, record.elastic_energy_j);
       record.time_reached_s = t;

@@ -198,6 +198,76 @@ TEST(IdaIntegrator, InitialStateIsMadeConsistent) {
   EXPECT_LT(max_relative_error(ida, solid, {0.1, 1.0}), 20e-8);
 }
 
+// Start at rest on a strain ramp already moving (y' = 0 while eps' = eps0/t_ramp): the probe
+// step recovers the consistent rates, sigma' = (E_inf + Σ E_i) eps' and alpha_i' = 0 (exact at
+// t0 = 0, where eps = alpha_i = 0), to O(probe), and the run then needs fewer steps.
+class StartsAtRest : public MaxwellSolidSystem {
+ public:
+  void initial_state(double t0, Vec y, Vec ydot) override {
+    MaxwellSolidSystem::initial_state(t0, y, ydot);
+    VecSet(ydot, 0.0);
+  }
+};
+
+TEST(IdaIntegrator, ProbeStepGivesTheConsistentInitialRates) {
+  const double rtol = 1e-6;
+  long steps_from_rest = 0;
+  {
+    StartsAtRest system;
+    IdaIntegrator ida(system, with_tolerance(rtol), 0.0, PETSC_COMM_SELF);
+    set_scaled_tolerances(ida, system.solid(), rtol);
+    EXPECT_LT(max_relative_error(ida, system.solid(), kOutputTimes), 20.0 * rtol);
+    steps_from_rest = ida.counters().steps;
+  }
+  StartsAtRest system;
+  const MaxwellSolid& solid = system.solid();
+  IdaIntegrator ida(system, with_tolerance(rtol), 0.0, PETSC_COMM_SELF);
+  set_scaled_tolerances(ida, solid, rtol);
+  const double probe = 1e-9;
+  const auto probed = ida.make_initial_rates_consistent(probe, 0.05);
+  EXPECT_TRUE(probed.converged);
+  EXPECT_LE(probed.iterations, 3);  // linear system: one iteration, plus the one that sees it converged
+  const auto rate = values(ida.state_rate());
+  const double strain_rate = solid.eps0 / solid.t_ramp;
+  const double stiffness = solid.e_inf + solid.e_branch[0] + solid.e_branch[1];
+  EXPECT_NEAR(rate[0], stiffness * strain_rate, 1e-6 * stiffness * strain_rate);
+  // alpha_i' = eps(probe) / (tau_i + probe) ~ strain_rate probe / tau_i: O(probe).
+  EXPECT_NEAR(rate[1], 0.0, 10.0 * strain_rate * probe / solid.tau[0]);
+  EXPECT_LT(max_relative_error(ida, solid, kOutputTimes), 20.0 * rtol);
+  const long steps_probed = ida.counters().steps;
+  std::printf("steps from rest %ld, after the probe step %ld\n", steps_from_rest, steps_probed);
+  EXPECT_LT(steps_probed, steps_from_rest);
+}
+
+// Newton-Krylov (GMRES on IDA's difference quotients, preconditioned by the factored matrix):
+// the same accuracy; a stale factorisation may serve across larger cj changes.
+TEST(IdaIntegrator, NewtonKrylovGivesTheSameAccuracyWithFewerFactorisations) {
+  const double rtol = 1e-6;
+  long modified_setups = 0;
+  for (NewtonMethod method : {NewtonMethod::modified, NewtonMethod::krylov}) {
+    MaxwellSolidSystem system;
+    IdaOptions options = with_tolerance(rtol);
+    options.newton = method;
+    if (method == NewtonMethod::krylov) options.newton_matrix_cj_change = 0.9;
+    IdaIntegrator ida(system, options, 0.0, PETSC_COMM_SELF);
+    set_scaled_tolerances(ida, system.solid(), rtol);
+    const double error = max_relative_error(ida, system.solid(), kOutputTimes);
+    const auto c = ida.counters();
+    std::printf("%s: error %.3e, steps %ld, Newton %ld, setups %ld, GMRES iterations %ld\n",
+                method == NewtonMethod::krylov ? "krylov" : "modified", error, c.steps, c.newton_iterations,
+                c.jacobian_setups, c.linear_iterations);
+    EXPECT_LT(error, 20.0 * rtol);
+    EXPECT_EQ(system.jacobian_setups(), c.jacobian_setups);
+    if (method == NewtonMethod::modified) {
+      modified_setups = c.jacobian_setups;
+      EXPECT_EQ(c.linear_iterations, 0);
+    } else {
+      EXPECT_GT(c.linear_iterations, 0);
+      EXPECT_LT(c.jacobian_setups, modified_setups);
+    }
+  }
+}
+
 // y' = (1 - y) / tau, y(0) = 0 (a saturating variable such as a damage fraction that cannot
 // exceed 1): exact y = 1 - exp(-t / tau). The residual reports a recoverable failure for y > 1,
 // which only the predictor of a long step reaches (polynomial extrapolation of the saturating

@@ -115,6 +115,12 @@ void MechanicsSystem::differential_mask(Vec id) {
   std::fill(mask.data() + displacement_dofs(), mask.data() + local_size(), 1.0);
 }
 
+void MechanicsSystem::absolute_tolerances(Vec atol, double displacement_m, double viscous_stress_pa) const {
+  WriteArray values(atol);
+  std::fill(values.data(), values.data() + displacement_dofs(), displacement_m);
+  std::fill(values.data() + displacement_dofs(), values.data() + local_size(), viscous_stress_pa);
+}
+
 void MechanicsSystem::gather_displacement(const double* y, std::size_t tissue_element, double* u_e) const {
   const int* nodes = mesh_.tet(dofs_.tissue_tets[tissue_element]);
   for (int a = 0; a < mesh_.nodes_per_tet; ++a)

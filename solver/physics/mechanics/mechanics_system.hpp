@@ -65,6 +65,11 @@ class MechanicsSystem final : public DaeSystem {
   // ū(t0) = 0, as in both scenes at t0 = 0).
   void initial_state(double t0, Vec y, Vec ydot) override;
   void differential_mask(Vec id) override;
+  // IDA's absolute tolerances per unknown: metres for displacements, pascals for the viscous
+  // stresses Q. One scalar for both would be wrong by the ratio of their scales (~1e7 for brain
+  // tissue: Q ~ kPa against u ~ 0.1 mm), and an atol of 1e-8 "Pa" forces steps far smaller than
+  // the loading needs while Q is still near zero.
+  void absolute_tolerances(Vec atol, double displacement_m, double viscous_stress_pa) const;
   DaeStatus residual(double t, Vec y, Vec ydot, Vec F) override;
   DaeStatus setup_jacobian(double t, Vec y, Vec ydot, double cj) override;
   DaeStatus solve_jacobian(Vec b, Vec x) override;
