@@ -1,4 +1,4 @@
-// `needlefem sweep SWEEP.toml [--out DIR] [--jobs N] [--retry-failed] [-- PETSc options]`:
+// `needlefem sweep SWEEP.toml [--out DIR] [--jobs N] [--retry-failed] [--list] [-- PETSc options]`:
 // a design study. Expands the sweep file (sweep/sweep_plan.hpp) into design points, lists the
 // geometrically impossible ones with their rule, runs the others as `needlefem run` child
 // processes, at most N at a time, resuming where an earlier sweep into DIR stopped
@@ -18,6 +18,7 @@ struct SweepCommandOptions {
   std::string out_dir = "out/sweep";
   int jobs = 1;
   bool retry_failed = false;
+  bool list_only = false;
 };
 
 void sweep_command(const SweepCommandOptions& options) {
@@ -27,6 +28,7 @@ void sweep_command(const SweepCommandOptions& options) {
   run.executable = std::filesystem::read_symlink("/proc/self/exe");
   run.jobs = options.jobs;
   run.retry_failed = options.retry_failed;
+  run.list_only = options.list_only;
   run.backend_options = backend_options();
   sweep::run_sweep(plan, run);
 }
@@ -46,6 +48,8 @@ void add_sweep_command(CLI::App& app) {
       ->check(CLI::Range(1, 1024))
       ->capture_default_str();
   command->add_flag("--retry-failed", options->retry_failed, "Run failed points again (finished ones are skipped)");
+  command->add_flag("--list", options->list_only,
+                    "List the design points (impossible ones with their rule), write the table, run nothing");
   command->footer(
       "A restarted sweep skips every point whose summary.json says completed for the same case. "
       "Under `mpirun -n R` each rank runs every R-th point; the table is shared.");

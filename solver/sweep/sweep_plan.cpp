@@ -215,11 +215,12 @@ nlohmann::json json_default(const KeySpec& spec) {
       spec.fallback);
 }
 
-// Directory-name text of a value: numbers in shortest form, other text reduced to safe characters.
+// Directory-name text of a value: numbers in shortest form, a file by its name, other text
+// reduced to safe characters; "none" for no value.
 std::string name_text(const nlohmann::json& value) {
-  if (value.is_null()) return "none";
+  if (value.is_null() || value == "") return "none";
   if (value.is_number_float()) return fmt::format("{}", value.get<double>());
-  std::string text = value.is_string() ? value.get<std::string>() : value.dump();
+  std::string text = value.is_string() ? fs::path(value.get<std::string>()).filename().string() : value.dump();
   for (char& ch : text)
     if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '.' && ch != '-' && ch != '+') ch = '-';
   return text;

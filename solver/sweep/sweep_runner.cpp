@@ -175,7 +175,11 @@ SweepOutcome run_sweep(const SweepPlan& plan, const SweepOptions& options) {
   progress.line(fmt::format("{} design points ({} impossible); {} to run here, {} already done, {} to run with {} job{}",
                             plan.points.size(), outcome.impossible, outcome.total, outcome.already_done, queue.size(),
                             options.jobs, options.jobs > 1 ? "s" : ""));
+  if (options.list_only)
+    for (std::size_t i : queue) progress.line(fmt::format("to run: {} ({})", plan.points[i].name,
+                                                          fmt::join(plan.points[i].grids, ",")));
   write_tables(plan, options.out_dir);
+  if (options.list_only) return outcome;
 
   const auto environment = child_environment(rank.launched);
   struct Running {

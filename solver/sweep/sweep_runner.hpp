@@ -31,6 +31,7 @@ struct SweepOptions {
   std::filesystem::path executable;  // the needlefem binary the children run
   int jobs = 1;
   bool retry_failed = false;
+  bool list_only = false;  // list the points and write the table; run nothing
   std::vector<std::string> backend_options;  // passed after "--" to every run
   std::FILE* progress = stdout;
 };

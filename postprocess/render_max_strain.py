@@ -1,0 +1,143 @@
+"""Render a run's running-maximum log strain (cell field max_over_time_log_strain at the last
+output time) on a cut plane through the needle axis, headless, to PNG.
+
+usage: xvfb-run -a pvbatch postprocess/render_max_strain.py RUN_DIR/result.xdmf [--png OUT.png]
+           [--field NAME] [--normal x|y|z] [--offset-mm D] [--window-mm W] [--max V] [--size W H]
+(default OUT.png: result_max_log_strain.png next to the XDMF; /usr/bin/python3 with Debian's
+python3-paraview also runs it, under xvfb-run.)
+
+The default plane y = 0 holds the needle axis (z) and the bevel's side profile (x-z) of the
+brain-tip scene (a block, which does not contain y = 0 inside, is cut through its middle). Tissue
+cells are coloured by the field, the needle's cells (region "needle", when meshed) grey. The
+view is parallel, insertion axis to the right, `--window-mm` wide around the needle tip
+(default: three tip lengths when the needle is meshed, else the whole cut). Colour range 0 .. max of the field unless --max is given.
+"""
+import argparse
+import os
+import sys
+
+from paraview.simple import (ColorBy, CreateView, GetColorTransferFunction, GetScalarBar, Show, Slice,
+                             SaveScreenshot, Text, Threshold, Xdmf3ReaderS)
+
+NORMALS = {"x": [1.0, 0.0, 0.0], "y": [0.0, 1.0, 0.0], "z": [0.0, 0.0, 1.0]}
+# Camera direction and up vector per plane normal: insertion axis z to the right where it lies in the plane.
+CAMERAS = {"x": ([1.0, 0.0, 0.0], [0.0, 1.0, 0.0]), "y": ([0.0, 1.0, 0.0], [1.0, 0.0, 0.0]),
+           "z": ([0.0, 0.0, 1.0], [0.0, 1.0, 0.0])}
+
+
+def region_names(xdmf):
+    """Region index -> name from the XDMF's Information "region_names" ("0=tissue_core, ...")."""
+    with open(xdmf) as f:
+        for line in f:
+            if 'Name="region_names"' in line:
+                value = line.split('Value="', 1)[1].split('"', 1)[0]
+                return {int(k): v for k, v in (item.strip().split("=", 1) for item in value.split(","))}
+    return {}
+
+
+def region_filter(source, low, high):
+    selection = Threshold(Input=source)
+    selection.Scalars = ["CELLS", "region"]
+    selection.LowerThreshold = low
+    selection.UpperThreshold = high
+    return selection
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("xdmf")
+    parser.add_argument("--png")
+    parser.add_argument("--field", default="max_over_time_log_strain")
+    parser.add_argument("--normal", choices=sorted(NORMALS), default="y")
+    parser.add_argument("--offset-mm", type=float,
+                        help="plane position along its normal (default 0, the needle axis, when inside the "
+                             "tissue, else the middle of the tissue)")
+    parser.add_argument("--window-mm", type=float, help="width of the view around the needle tip")
+    parser.add_argument("--max", type=float, help="upper end of the colour range")
+    parser.add_argument("--size", type=int, nargs=2, default=[1200, 900])
+    args = parser.parse_args()
+
+    xdmf = os.path.abspath(args.xdmf)  # ParaView's Xdmf3 reader fails on bare relative names
+    png = args.png or os.path.join(os.path.dirname(xdmf), "result_max_log_strain.png")
+    reader = Xdmf3ReaderS(FileName=[xdmf])
+    reader.UpdatePipelineInformation()
+    times = list(reader.TimestepValues) or [0.0]
+    reader.UpdatePipeline(times[-1])
+    if args.field not in reader.CellData.keys():
+        sys.exit(f"{xdmf}: no cell field '{args.field}' (fields: {', '.join(reader.CellData.keys())})")
+
+    names = region_names(xdmf)
+    needle = [k for k, v in names.items() if v == "needle"]
+    tissue_regions = [k for k, v in names.items() if v != "needle"] or [0]
+    axis = "xyz".index(args.normal)
+    if args.offset_mm is None:
+        low, high = reader.GetDataInformation().GetBounds()[2 * axis:2 * axis + 2]
+        args.offset_mm = 0.0 if low < 0.0 < high else (low + high) / 2
+    origin = [n * args.offset_mm for n in NORMALS[args.normal]]
+
+    view = CreateView("RenderView")
+    view.ViewSize = args.size
+    view.ViewTime = times[-1]
+    view.OrientationAxesVisibility = 1
+    view.OrientationAxesLabelColor = [0.0, 0.0, 0.0]
+    view.UseColorPaletteForBackground = 0  # else the palette's background wins over Background
+    view.Background = [1.0, 1.0, 1.0]
+    view.CameraParallelProjection = 1
+
+    tissue = region_filter(reader, min(tissue_regions), max(tissue_regions))
+    cut = Slice(Input=tissue)
+    cut.SliceType = "Plane"
+    cut.SliceType.Origin = origin
+    cut.SliceType.Normal = NORMALS[args.normal]
+    cut.UpdatePipeline(times[-1])
+    shown = Show(cut, view)
+    ColorBy(shown, ("CELLS", args.field))
+    field_range = cut.CellData[args.field].GetRange()
+    lut = GetColorTransferFunction(args.field)
+    lut.ApplyPreset("Viridis (matplotlib)", True)
+    lut.RescaleTransferFunction(0.0, args.max if args.max is not None else max(field_range[1], 1e-12))
+    shown.SetScalarBarVisibility(view, True)
+    bar = GetScalarBar(lut, view)
+    bar.TitleColor = bar.LabelColor = [0.0, 0.0, 0.0]
+
+    needle_length = 0.0
+    if needle:
+        needle_cut = Slice(Input=region_filter(reader, needle[0], needle[0]))
+        needle_cut.SliceType = "Plane"
+        needle_cut.SliceType.Origin = origin
+        needle_cut.SliceType.Normal = NORMALS[args.normal]
+        needle_cut.UpdatePipeline(times[-1])
+        needle_shown = Show(needle_cut, view)
+        ColorBy(needle_shown, None)
+        needle_shown.DiffuseColor = [0.55, 0.55, 0.55]
+        needle_shown.AmbientColor = [0.55, 0.55, 0.55]
+        bounds = needle_cut.GetDataInformation().GetBounds()
+        if bounds[0] <= bounds[1]:
+            needle_length = bounds[5]
+
+    bounds = cut.GetDataInformation().GetBounds()
+    centre = [(bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2, (bounds[4] + bounds[5]) / 2]
+    # Parallel scale = half the view height: the whole cut fits the height; a window fills the width.
+    scale = 1.05 * max(bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4]) / 2
+    window = args.window_mm or (3.0 * needle_length if needle_length > 0 else None)
+    if window:
+        centre = [origin[0] if args.normal == "x" else 0.0, origin[1] if args.normal == "y" else 0.0,
+                  origin[2] if args.normal == "z" else needle_length / 2]
+        scale = window / 2 * args.size[1] / args.size[0]
+    direction, up = CAMERAS[args.normal]
+    view.CameraFocalPoint = centre
+    view.CameraPosition = [c + 100.0 * d for c, d in zip(centre, direction)]
+    view.CameraViewUp = up
+    view.CameraParallelScale = scale
+
+    title = Text(Text=f"{args.field} at t = {times[-1]:g} s, plane {args.normal} = {args.offset_mm:g} mm "
+                      f"(max {field_range[1]:.4g})")
+    title_shown = Show(title, view)
+    title_shown.Color = [0.0, 0.0, 0.0]
+    title_shown.FontSize = 14
+    SaveScreenshot(png, view, ImageResolution=args.size)
+    print(f"wrote {png} ({args.field} max {field_range[1]:.6g} on the cut)")
+
+
+if __name__ == "__main__":
+    main()

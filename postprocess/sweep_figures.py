@@ -1,0 +1,368 @@
+#!/usr/bin/python3
+"""Figures of a `needlefem sweep` (paper 001, Figs. 4-6, and a safety map) and of one run.
+
+Reads the sweep's table DIR/sweep.h5 (layout: solver/sweep/sweep_table.hpp) and, per design
+point, DIR/<point>/summary.json (the resolved case: needle, motion; the threshold limits) and
+DIR/<point>/history.csv (maxima per output time). Only completed points are drawn, except in the
+safety map, which shows every point of the grid.
+
+usage: /usr/bin/python3 postprocess/sweep_figures.py COMMAND ARGS [--png OUT.png]
+  stress-strain SWEEP_DIR [--grid G]  max von Mises stress against max log strain over each run,
+                                      one line per tip, with the strain and stress limits (Fig. 4)
+  fillet SWEEP_DIR [--grid G]         max von Mises stress against fillet radius, one line per
+                                      radius and bevel angle (Fig. 5)
+  strain-rate SWEEP_DIR [--grid G]    max strain rate against time, one line per speed
+                                      (slow/medium/fast when there are three), with the limit (Fig. 6)
+  safety-map SWEEP_DIR [--x KEY] [--y KEY]
+                                      safe/unsafe/failed/impossible over two swept keys (default: the
+                                      first two that vary), one panel per value of the other swept keys
+  history RUN_DIR                     time histories of one run: maxima with their limits, reactions
+  all SWEEP_DIR [--out DIR] [--design-grid G] [--rate-grid G]
+                                      all of the above (history of the first completed point) as
+                                      fig4_stress_strain.png, fig5_fillet.png, fig6_strain_rate.png,
+                                      safety_map.png, history.png in DIR (default SWEEP_DIR/figures)
+--grid G keeps the points of grid G (a [[grid]] name, or "main"). Default OUT: SWEEP_DIR/<figure>.png.
+"""
+import argparse
+import csv
+import itertools
+import json
+import math
+import pathlib
+import sys
+
+import h5py
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+# Paper 001's limits, used when a run's summary.json has no "thresholds".
+PAPER_LIMITS = {"log_strain": 0.19, "strain_rate_per_s": 10.0, "stress_pa": 120e3}
+
+
+class Sweep:
+    """The table of a sweep directory, one entry per design point."""
+
+    def __init__(self, directory):
+        self.dir = pathlib.Path(directory)
+        path = self.dir / "sweep.h5"
+        if not path.exists():
+            raise SystemExit(f"{path}: no sweep table (run `needlefem sweep` first)")
+        with h5py.File(path, "r") as f:
+            if f.attrs.get("format") != "needlefem-sweep-table":
+                raise SystemExit(f"{path}: not a needlefem sweep table")
+            self.columns = [str(c) for c in f.attrs["columns"]]
+            self.table = {}
+            for name in self.columns:
+                data = f[name]
+                self.table[name] = data.asstr()[()] if h5py.check_string_dtype(data.dtype) else data[()]
+        first_key, last_key = self.columns.index("grids") + 1, self.columns.index("status")
+        self.swept_keys = self.columns[first_key:last_key]
+        self.rows = len(self.table["point"])
+
+    def indices(self, grid=None, status="completed"):
+        return [i for i in range(self.rows)
+                if (status is None or self.table["status"][i] == status)
+                and (grid is None or grid in self.table["grids"][i].split(","))]
+
+    def summary(self, i):
+        return json.loads((self.dir / self.table["point"][i] / "summary.json").read_text())
+
+    def history(self, i):
+        return read_history(self.dir / self.table["point"][i])
+
+    def limits(self):
+        for i in self.indices():
+            return run_limits(self.summary(i))
+        return dict(PAPER_LIMITS)
+
+
+def run_limits(summary):
+    limits = dict(PAPER_LIMITS)
+    for name, entry in summary.get("thresholds", {}).items():
+        if isinstance(entry, dict) and "limit" in entry:
+            limits[name] = float(entry["limit"])
+    return limits
+
+
+def read_history(run_dir):
+    with open(pathlib.Path(run_dir) / "history.csv") as f:
+        rows = list(csv.DictReader(f))
+    if not rows:
+        raise SystemExit(f"{run_dir}/history.csv: no rows")
+    return {key: np.array([float(r[key]) for r in rows]) for key in rows[0]}
+
+
+def tip_of(summary):
+    needle = summary["case"]["needle"]
+    return needle["radius_mm"], needle["bevel_deg"], needle["fillet_mm"]
+
+
+def motion_of(summary):
+    motion = summary["case"]["motion"]
+    return motion["insertion_speed_mm_per_s"], motion["rotation_speed_deg_per_s"]
+
+
+def tip_label(tip):
+    radius, bevel, fillet = tip
+    if fillet >= radius:
+        return f"r {radius:g} mm, rounded"
+    return f"r {radius:g} mm, {bevel:g}°, τ {fillet:g} mm"
+
+
+def motion_label(motion):
+    return f"{motion[0]:g} mm/s, {motion[1]:g}°/s"
+
+
+def finish(fig, png):
+    png = pathlib.Path(png)
+    png.parent.mkdir(parents=True, exist_ok=True)
+    fig.tight_layout()
+    fig.savefig(png, dpi=130)
+    plt.close(fig)
+    print(f"wrote {png}")
+
+
+def no_data(ax, text):
+    ax.text(0.5, 0.5, text, ha="center", va="center", transform=ax.transAxes)
+
+
+def finish_axes(fig, ax, png, drawn, xlabel, ylabel, title, legend_size=7, legend_at="best"):
+    """Labels, legend and grid of a one-axes figure, then the PNG."""
+    if not drawn:
+        no_data(ax, "no completed runs")
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title)
+    ax.legend(fontsize=legend_size, loc=legend_at)
+    ax.grid(True, which="both", alpha=0.3)
+    finish(fig, png)
+
+
+def stress_strain(sweep, png, grid=None):
+    """Fig. 4: the path (max log strain, max von Mises) of every completed run over time."""
+    limits = sweep.limits()
+    fig, ax = plt.subplots(figsize=(7, 5))
+    points = sweep.indices(grid)
+    summaries = {i: sweep.summary(i) for i in points}
+    several_motions = len({motion_of(s) for s in summaries.values()}) > 1
+    for i in sorted(points, key=lambda i: tip_of(summaries[i])):
+        h = sweep.history(i)
+        label = tip_label(tip_of(summaries[i]))
+        if several_motions:
+            label += f" ({motion_label(motion_of(summaries[i]))})"
+        strain, stress = h["max_log_strain"], h["max_von_mises"] / 1e3
+        keep = stress > 0  # the log axis cannot show the unloaded start
+        line, = ax.plot(strain[keep], stress[keep], marker=".", label=label)
+        ax.plot(strain[-1], stress[-1], marker="o", color=line.get_color())
+    ax.axvline(limits["log_strain"], color="#d62728", ls="--", label=f"strain limit {limits['log_strain']:g}")
+    ax.axhline(limits["stress_pa"] / 1e3, color="#9467bd", ls="--",
+               label=f"stress limit {limits['stress_pa'] / 1e3:g} kPa")
+    ax.set_yscale("log")
+    ax.set_xlim(left=0)
+    finish_axes(fig, ax, png, points, "max principal logarithmic strain", "max von Mises stress [kPa] (log scale)",
+                "Stress and log strain per needle tip (maxima over the tissue at each time)", legend_at="lower right")
+
+
+def fillet(sweep, png, grid=None):
+    """Fig. 5: max von Mises stress against fillet radius, one line per radius/bevel (and motion)."""
+    fig, ax = plt.subplots(figsize=(7, 5))
+    groups = {}
+    for i in sweep.indices(grid):
+        s = sweep.summary(i)
+        radius, bevel, tau = tip_of(s)
+        key = (radius, bevel if tau < radius else None, motion_of(s))
+        groups.setdefault(key, []).append((tau, s["max"]["von_mises_pa"]["value"] / 1e3))
+    several_motions = len({k[2] for k in groups}) > 1
+    for (radius, bevel, motion), values in sorted(groups.items(), key=lambda kv: (kv[0][0], kv[0][1] or 0)):
+        values.sort()
+        label = f"r {radius:g} mm, " + (f"{bevel:g}°" if bevel is not None else "rounded")
+        if several_motions:
+            label += f" ({motion_label(motion)})"
+        ax.plot([v[0] for v in values], [v[1] for v in values], marker="o", label=label)
+    finish_axes(fig, ax, png, groups, "tip fillet radius τ [mm]", "max von Mises stress [kPa]",
+                "Maximum stress against fillet radius", legend_size=8)
+
+
+def strain_rate(sweep, png, grid=None):
+    """Fig. 6: max strain rate against time for each insertion/rotation speed."""
+    limits = sweep.limits()
+    fig, ax = plt.subplots(figsize=(7, 5))
+    points = sweep.indices(grid)
+    summaries = {i: sweep.summary(i) for i in points}
+    points.sort(key=lambda i: (motion_of(summaries[i]), tip_of(summaries[i])))
+    speeds = sorted({motion_of(s) for s in summaries.values()})
+    names = dict(zip(speeds, ["slow", "medium", "fast"])) if len(speeds) == 3 else {}
+    several_tips = len({tip_of(s) for s in summaries.values()}) > 1
+    for i in points:
+        h = sweep.history(i)
+        motion = motion_of(summaries[i])
+        label = (f"{names[motion]}: " if motion in names else "") + motion_label(motion)
+        if several_tips:
+            label += f", {tip_label(tip_of(summaries[i]))}"
+        ax.plot(h["time_s"], h["max_strain_rate"], marker=".", label=label)
+    ax.axhline(limits["strain_rate_per_s"], color="#d62728", ls="--",
+               label=f"strain-rate limit {limits['strain_rate_per_s']:g} 1/s")
+    finish_axes(fig, ax, png, points, "time [s]", "max principal strain rate [1/s]",
+                "Tissue strain rate against insertion and rotation speed")
+
+
+def varying_keys(sweep):
+    out = []
+    for key in sweep.swept_keys:
+        values = sweep.table[key]
+        if values.dtype.kind == "f" and len({v for v in values if not math.isnan(v)}) > 1:
+            out.append(key)
+        elif values.dtype.kind != "f" and len(set(values)) > 1:
+            out.append(key)
+    return out
+
+
+def short(key):
+    return key.rsplit(".", 1)[-1]
+
+
+def safety_map(sweep, png, x=None, y=None):
+    """Every design point over two swept keys: safe, unsafe (which limits), failed, impossible."""
+    keys = varying_keys(sweep)
+    x = x or (keys[0] if keys else sweep.swept_keys[0])
+    rest = [k for k in keys if k != x]
+    y = y or (rest[0] if rest else None)
+    for key in filter(None, (x, y)):
+        if key not in sweep.table:
+            raise SystemExit(f"safety-map: '{key}' is not a swept key of {sweep.dir} ({', '.join(sweep.swept_keys)})")
+    panel_keys = [k for k in keys if k not in (x, y)]
+    t = sweep.table
+    panels = sorted({tuple(t[k][i] for k in panel_keys) for i in range(sweep.rows)})
+    columns = min(3, len(panels))
+    rows = math.ceil(len(panels) / columns)
+    fig, axes = plt.subplots(rows, columns, figsize=(4.6 * columns, 3.9 * rows), squeeze=False)
+    pass_columns = [c for c in sweep.columns if c.startswith("pass_")]
+    styles = {"safe": dict(marker="o", color="#2ca02c"), "unsafe": dict(marker="X", color="#d62728"),
+              "failed": dict(marker="^", color="k"), "impossible": dict(marker="s", color="#b0b0b0"),
+              "pending": dict(marker="o", color="#1f77b4", fillstyle="none")}
+    seen = set()
+    for ax, panel in zip(axes.flat, panels):
+        for i in range(sweep.rows):
+            if tuple(t[k][i] for k in panel_keys) != panel:
+                continue
+            status = t["status"][i]
+            note = ""
+            if status == "completed":
+                failed = [c[len("pass_"):] for c in pass_columns if t[c][i] == 0]
+                status = "unsafe" if t["safe"][i] == 0 else "safe"
+                note = ", ".join(failed)
+            elif status == "impossible":
+                note = t["rules"][i]
+            yv = t[y][i] if y else 0.0
+            ax.plot(t[x][i], yv, ls="none", ms=11, label=None if status in seen else status, **styles[status])
+            seen.add(status)
+            if note:
+                ax.annotate(note, (t[x][i], yv), textcoords="offset points", xytext=(6, 6), fontsize=6)
+        ax.set_xlabel(short(x))
+        ax.set_ylabel(short(y) if y else "")
+        if not y:
+            ax.set_yticks([])
+        ax.set_title(", ".join(f"{short(k)} = {v:g}" if isinstance(v, float) else f"{short(k)} = {v}"
+                               for k, v in zip(panel_keys, panel)) or "design grid", fontsize=9)
+        ax.margins(0.2)
+        ax.grid(True, alpha=0.3)
+    for ax in list(axes.flat)[len(panels):]:
+        ax.axis("off")
+    handles = [plt.Line2D([], [], ls="none", ms=9, label=s, **styles[s]) for s in styles if s in seen]
+    fig.legend(handles=handles, loc="upper right", fontsize=8)
+    fig.suptitle("Safe and unsafe designs (labels: exceeded limits or violated geometry rules)", fontsize=10)
+    finish(fig, png)
+
+
+def history(run_dir, png):
+    """Time histories of one run: maxima against their limits, reactions on the cavity."""
+    run_dir = pathlib.Path(run_dir)
+    h = read_history(run_dir)
+    summary = json.loads((run_dir / "summary.json").read_text())
+    limits = run_limits(summary)
+    t = h["time_s"]
+    fig, axes = plt.subplots(2, 2, figsize=(10, 7), sharex=True)
+    panels = [(axes[0, 0], ["max_log_strain"], 1.0, "max principal log strain", limits["log_strain"]),
+              (axes[0, 1], ["max_strain_rate", "max_equivalent_strain_rate"], 1.0, "max strain rate [1/s]",
+               limits["strain_rate_per_s"]),
+              (axes[1, 0], ["max_von_mises", "max_max_principal_stress"], 1e3, "max stress [kPa]", None)]
+    for ax, names, scale, label, limit in panels:
+        for name in names:
+            ax.plot(t, h[name] / scale, marker=".", label=name[len("max_"):].replace("_", " "))
+        if limit is not None:
+            ax.axhline(limit, color="#d62728", ls="--", label=f"limit {limit:g}")
+        ax.set_ylabel(label)
+        ax.legend(fontsize=7)
+        ax.grid(True, alpha=0.3)
+    stress_limit = limits["stress_pa"] / 1e3
+    axes[1, 0].set_title(f"(stress limit {stress_limit:g} kPa)", fontsize=8)
+    ax = axes[1, 1]
+    surface = "cavity" if "reaction_cavity_z_n" in h else next(
+        (k[len("reaction_"):-len("_z_n")] for k in h if k.startswith("reaction_") and k.endswith("_z_n")), None)
+    if surface:
+        for component in "xyz":
+            ax.plot(t, h[f"reaction_{surface}_{component}_n"] * 1e3, marker=".", label=f"{component}")
+        ax.set_ylabel(f"reaction on {surface} [mN]")
+        ax.legend(fontsize=7)
+    else:
+        no_data(ax, "no reaction surfaces")
+    ax.grid(True, alpha=0.3)
+    for ax in axes[1]:
+        ax.set_xlabel("time [s]")
+    case = summary["case"]
+    title = run_dir.name
+    if case.get("scene", {}).get("kind") == "brain-tip":
+        title = f"{tip_label(tip_of(summary))}, {motion_label(motion_of(summary))}"
+    fig.suptitle(f"Time histories: {title} ({summary.get('status', '?')})", fontsize=10)
+    finish(fig, png)
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    commands = parser.add_subparsers(dest="command", required=True)
+    for name in ("stress-strain", "fillet", "strain-rate"):
+        p = commands.add_parser(name)
+        p.add_argument("sweep_dir")
+        p.add_argument("--grid")
+        p.add_argument("--png")
+    p = commands.add_parser("safety-map")
+    p.add_argument("sweep_dir")
+    p.add_argument("--x")
+    p.add_argument("--y")
+    p.add_argument("--png")
+    p = commands.add_parser("history")
+    p.add_argument("run_dir")
+    p.add_argument("--png")
+    p = commands.add_parser("all")
+    p.add_argument("sweep_dir")
+    p.add_argument("--out")
+    p.add_argument("--design-grid")
+    p.add_argument("--rate-grid")
+    args = parser.parse_args(argv)
+
+    if args.command == "history":
+        history(args.run_dir, args.png or pathlib.Path(args.run_dir) / "history.png")
+        return 0
+    sweep = Sweep(args.sweep_dir)
+    figures = {"stress-strain": stress_strain, "fillet": fillet, "strain-rate": strain_rate}
+    if args.command in figures:
+        figures[args.command](sweep, args.png or sweep.dir / f"{args.command}.png", args.grid)
+    elif args.command == "safety-map":
+        safety_map(sweep, args.png or sweep.dir / "safety_map.png", args.x, args.y)
+    else:
+        out = pathlib.Path(args.out) if args.out else sweep.dir / "figures"
+        stress_strain(sweep, out / "fig4_stress_strain.png", args.design_grid)
+        fillet(sweep, out / "fig5_fillet.png", args.design_grid)
+        strain_rate(sweep, out / "fig6_strain_rate.png", args.rate_grid)
+        safety_map(sweep, out / "safety_map.png")
+        completed = sweep.indices()
+        if completed:
+            history(sweep.dir / sweep.table["point"][completed[0]], out / "history.png")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

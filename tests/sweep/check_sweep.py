@@ -1,0 +1,226 @@
+#!/usr/bin/python3
+"""Tests of `needlefem sweep` and of the sweep figures.
+
+  resume   runs tests/sweep/tiny.toml (2 x 2 block points) with 2 jobs in its own process
+           group, SIGKILLs the group once a point has completed and another has started,
+           checks that nothing of the group survives, restarts: the restart must skip exactly
+           the points completed before the kill and finish the rest; a third start runs
+           nothing. Every row of sweep.csv and sweep.h5 appears exactly once and matches its
+           run: max log strain = ln 1.2, max strain rate in [0.2/(1.2 ramp), 0.2/ramp] (closed
+           forms of the uniaxial block, see tiny.toml; the ramps differ 66-fold), the strain-rate
+           limit failed exactly by the 15 ms ramp, pass_* = (value <= limit).
+  bad      runs tests/sweep/bad_points.toml: impossible points listed on the terminal with their
+           rule and in the table as "impossible" with the rule; the run that fails recorded as
+           "failed" with its error; the sweep exits 0.
+  figures  runs postprocess/sweep_figures.py all and postprocess/render_max_strain.py (pvbatch
+           under xvfb-run) on the resume test's sweep: every PNG exists and is not blank.
+"""
+import argparse
+import csv
+import json
+import math
+import os
+import pathlib
+import shutil
+import signal
+import subprocess
+import sys
+import time
+
+import h5py
+import numpy as np
+
+failures = []
+LIMITS = {"log_strain": 0.19, "strain_rate_per_s": 10.0, "stress_pa": 120e3}
+STRETCH_RATE = 0.2  # lambda goes from 1 to 1.2 over the ramp
+
+
+def check(condition, message):
+    print(("ok   " if condition else "FAIL ") + message)
+    if not condition:
+        failures.append(message)
+
+
+def sweep(exe, sweep_file, out, jobs=1, **popen):
+    return subprocess.Popen([exe, "sweep", str(sweep_file), "--out", str(out), "--jobs", str(jobs)],
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, **popen)
+
+
+def read_csv(out):
+    with open(out / "sweep.csv") as f:
+        return list(csv.DictReader(f))
+
+
+def statuses(out):
+    """Point directory -> status of its summary.json (what a restarted sweep will see)."""
+    result = {}
+    for summary in out.glob("*/summary.json"):
+        result[summary.parent.name] = json.loads(summary.read_text())["status"]
+    return result
+
+
+def live_members(group):
+    """Processes of a process group that are not zombies (an orphan's zombie may wait for a
+    reaper that never comes in a container)."""
+    live = []
+    for stat in pathlib.Path("/proc").glob("[0-9]*/stat"):
+        try:
+            fields = stat.read_text().rsplit(")", 1)[1].split()
+        except OSError:
+            continue
+        if int(fields[2]) == group and fields[0] != "Z":
+            live.append(stat.parent.name)
+    return live
+
+
+def rate_range(ramp):
+    """Closed-form strain rate of the block over its ramp: d(ln lambda)/dt = (0.2/ramp)/lambda,
+    from 0.2/ramp at lambda = 1 down to 0.2/(1.2 ramp); the maximum over the output times lies
+    in between (at t = 0 or at the first output time, depending on the initial rate)."""
+    return STRETCH_RATE / ramp / 1.2, STRETCH_RATE / ramp
+
+
+def check_table(out, expected_points):
+    rows = read_csv(out)
+    names = [r["point"] for r in rows]
+    check(sorted(names) == sorted(expected_points) and len(set(names)) == len(names),
+          f"sweep.csv: every point exactly once ({len(names)} rows)")
+    with h5py.File(out / "sweep.h5", "r") as h5:
+        h5_names = list(h5["point"].asstr()[()])
+        check(h5_names == names, "sweep.h5: the same rows in the same order")
+        for column in ("max_log_strain", "max_strain_rate_per_s", "loading.ramp_s"):
+            from_csv = np.array([float(r[column]) for r in rows])
+            check(np.allclose(h5[column][()], from_csv, rtol=1e-8), f"sweep.h5 column {column} = sweep.csv")
+    for r in rows:
+        check(r["status"] == "completed", f"{r['point']}: completed")
+        ramp = float(r["loading.ramp_s"])
+        strain, rate = float(r["max_log_strain"]), float(r["max_strain_rate_per_s"])
+        check(abs(strain - math.log(1.2)) <= 1e-3 * math.log(1.2), f"{r['point']}: max log strain {strain:.7f} = ln 1.2")
+        low, high = rate_range(ramp)
+        check(low * (1 - 1e-3) <= rate <= high * (1 + 1e-3),
+              f"{r['point']}: max strain rate {rate:.5g} in the closed form's range [{low:.5g}, {high:.5g}] 1/s")
+        for name, column in (("log_strain", "max_log_strain"), ("strain_rate_per_s", "max_strain_rate_per_s"),
+                             ("stress_pa", "max_von_mises_pa")):
+            passed = int(r[f"pass_{name}"])
+            check(passed == int(float(r[column]) <= LIMITS[name]), f"{r['point']}: pass_{name} = {passed}")
+        check(int(r["pass_strain_rate_per_s"]) == int(ramp > 0.1), f"{r['point']}: strain-rate limit fails only "
+                                                                   "for the 15 ms ramp")
+        check(float(r["dofs"]) > 0 and float(r["wall_s"]) > 0, f"{r['point']}: dofs and wall time recorded")
+    return rows
+
+
+def resume(args):
+    out = pathlib.Path(args.out)
+    shutil.rmtree(out, ignore_errors=True)
+    expected = [f"element_mm={e}__ramp_s={r}" for e in ("0.5", "1") for r in ("0.015", "1")]
+    start = time.monotonic()
+    first = sweep(args.exe, args.sweep, out, jobs=2, start_new_session=True)
+    killed = False
+    while first.poll() is None and time.monotonic() - start < 60:
+        done = [n for n, s in statuses(out).items() if s == "completed"]
+        started = [p.parent.name for p in out.glob("*/run.log")]
+        if done and len(started) > len(done):
+            os.killpg(first.pid, signal.SIGKILL)
+            killed = True
+            break
+        time.sleep(0.02)
+    first.wait()
+    log = first.stdout.read()
+    check(killed, f"sweep killed mid-way (SIGKILL to its process group) after {time.monotonic() - start:.1f} s")
+    time.sleep(0.2)
+    check(not live_members(first.pid), "no process of the killed sweep's group survives")
+    done_before = sorted(n for n, s in statuses(out).items() if s == "completed")
+    check(0 < len(done_before) < 4, f"{len(done_before)} of 4 points completed before the kill")
+    print(log)
+
+    second = sweep(args.exe, args.sweep, out, jobs=2)
+    log, _ = second.communicate()
+    print(log)
+    check(second.returncode == 0, "restarted sweep exits 0")
+    check(f"{len(done_before)} already done, {4 - len(done_before)} to run" in log,
+          f"restart skips the {len(done_before)} completed points and runs the other {4 - len(done_before)}")
+    for name in done_before:
+        check(f"started {name}" not in log, f"restart does not run {name} again")
+    check("ETA" in log and f"[4/4]" in log, "progress shows done/total and ETA")
+    rows = check_table(out, expected)
+    wall = time.monotonic() - start
+
+    logs = {p: p.stat().st_mtime_ns for p in out.glob("*/run.log")}
+    third = sweep(args.exe, args.sweep, out)
+    log, _ = third.communicate()
+    check(third.returncode == 0 and "4 already done, 0 to run" in log, "a finished sweep started again runs nothing")
+    check(logs == {p: p.stat().st_mtime_ns for p in out.glob("*/run.log")}, "no run log rewritten")
+    check(read_csv(out) == rows, "the table is unchanged")
+    print(f"tiny sweep with kill and restart: {wall:.1f} s wall")
+
+
+def bad(args):
+    out = pathlib.Path(args.out)
+    shutil.rmtree(out, ignore_errors=True)
+    process = sweep(args.exe, args.sweep, out)
+    log, _ = process.communicate()
+    print(log)
+    check(process.returncode == 0, "a sweep with impossible and failed points exits 0")
+    rows = {r["grids"]: r for r in read_csv(out)}
+    expected_rules = {"impossible": ["fillet-exceeds-radius", "fillet-fits-bevel"], "wide": ["core-contains-needle"],
+                      "out-of-range": ["case"]}
+    for rule in sum(expected_rules.values(), []):
+        check(f"rule '{rule}'" in log, f"terminal lists an impossible point with rule '{rule}'")
+    impossible = [r for r in read_csv(out) if r["status"] == "impossible"]
+    check(sorted(r["rules"] for r in impossible) == sorted(sum(expected_rules.values(), [])),
+          f"table: 4 impossible rows with their rules ({[r['rules'] for r in impossible]})")
+    check(all(not (out / r["point"]).exists() for r in impossible), "impossible points are not run")
+    check("out of range" in rows["out-of-range"]["error"], "the out-of-range key's reason is in the table")
+    failed = rows["missing-mesh"]
+    check(failed["status"] == "failed" and "no_such_mesh.msh' not found" in failed["error"],
+          f"the failing run is recorded with its error: {failed['error']}")
+
+
+def png_ok(path):
+    import matplotlib.image
+    if not path.exists() or path.stat().st_size < 5000:
+        return False
+    image = matplotlib.image.imread(str(path))
+    return float(np.std(image[..., :3])) > 0.01
+
+
+def figures(args):
+    sweep_dir = pathlib.Path(args.sweep_dir)
+    out = pathlib.Path(args.out)
+    shutil.rmtree(out, ignore_errors=True)
+    result = subprocess.run([sys.executable, args.figures, "all", str(sweep_dir), "--out", str(out)],
+                            capture_output=True, text=True)
+    print(result.stdout, result.stderr)
+    check(result.returncode == 0, "sweep_figures.py all exits 0")
+    for name in ("fig4_stress_strain", "fig5_fillet", "fig6_strain_rate", "safety_map", "history"):
+        check(png_ok(out / f"{name}.png"), f"{name}.png written and not blank")
+    point = read_csv(sweep_dir)[0]["point"]
+    png = out / "max_log_strain.png"
+    result = subprocess.run(["xvfb-run", "-a", "pvbatch", args.render, str(sweep_dir / point / "result.xdmf"),
+                             "--png", str(png)], capture_output=True, text=True)
+    print(result.stdout, result.stderr[-2000:])
+    check(result.returncode == 0 and png_ok(png), "render_max_strain.py renders a non-blank PNG")
+    with h5py.File(sweep_dir / point / "result.h5", "r") as h5:
+        field_max = float(np.max(h5["/series/cell/max_over_time_log_strain"][int(h5["/series/time_count"][0]) - 1]))
+    check(abs(field_max - math.log(1.2)) <= 1e-6, f"the rendered field's last time holds ln 1.2 ({field_max:.7f})")
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("mode", choices=["resume", "bad", "figures"])
+    parser.add_argument("--exe")
+    parser.add_argument("--sweep")
+    parser.add_argument("--out", required=True)
+    parser.add_argument("--sweep-dir")
+    parser.add_argument("--figures")
+    parser.add_argument("--render")
+    args = parser.parse_args()
+    {"resume": resume, "bad": bad, "figures": figures}[args.mode](args)
+    if failures:
+        print(f"{len(failures)} check(s) failed")
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
