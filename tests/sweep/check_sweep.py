@@ -200,9 +200,14 @@ def figures(args):
                              "--png", str(png)], capture_output=True, text=True)
     print(result.stdout, result.stderr[-2000:])
     check(result.returncode == 0 and png_ok(png), "render_max_strain.py renders a non-blank PNG")
+    # The block's field is homogeneous (to ~1e-4), so the cut's maximum is the field's at the last
+    # time, and never above it.
     with h5py.File(sweep_dir / point / "result.h5", "r") as h5:
-        field_max = float(np.max(h5["/series/cell/max_over_time_log_strain"][int(h5["/series/time_count"][0]) - 1]))
-    check(abs(field_max - math.log(1.2)) <= 1e-6, f"the rendered field's last time holds ln 1.2 ({field_max:.7f})")
+        last = int(h5["/series/time_count"][0]) - 1
+        field_max = float(np.max(h5["/series/cell/max_over_time_log_strain"][last]))
+    shown = [float(w.split()[-4]) for w in result.stdout.splitlines() if w.startswith("wrote ")]
+    check(len(shown) == 1 and field_max * (1 - 1e-3) <= shown[0] <= field_max * (1 + 1e-5),
+          f"the rendered field is max_over_time_log_strain at the last time ({shown} vs {field_max:.7g})")
 
 
 def main():
