@@ -27,6 +27,8 @@ void add_material_test_command(CLI::App& app);
 void add_magnet_command(CLI::App& app);
 void add_replay_command(CLI::App& app);
 void add_steer_command(CLI::App& app);
+void add_prbm_check_command(CLI::App& app);
+void add_force_trajectory_command(CLI::App& app);
 void add_run_command(CLI::App& app);
 void add_sweep_command(CLI::App& app);
 

@@ -56,6 +56,8 @@ int main(int argc, char** argv) {
   app::add_magnet_command(cli);
   app::add_replay_command(cli);
   app::add_steer_command(cli);
+  app::add_prbm_check_command(cli);
+  app::add_force_trajectory_command(cli);
   app::add_run_command(cli);
   app::add_sweep_command(cli);
 

@@ -263,6 +263,33 @@ std::vector<KeySpec> build_schema() {
             "Target point (x, y, z) the tip should reach at the end of the insertion"),
       real("steering.target_tolerance_mm", 0.5, 0.0, 1e4,
            "Miss distance below which the summary reports the target as reached"),
+
+      // --- PRBM check of the compliant needle (prbm_check/, `needlefem prbm-check`, paper 000) --
+      // Needle geometry from needle.*, its Young's modulus from steering.neck_youngs_modulus_gpa.
+      real("prbm_check.poisson_ratio", 0.3, -1.0, 0.5,
+           "Poisson's ratio of the needle material (stainless steel: 0.3) in the tip FEM"),
+      reals("prbm_check.angles_deg", std::vector<double>{2.0, 5.0, 10.0, 15.0, 20.0, 25.0, 30.0, 40.0}, 0, 0.0, 89.0,
+            "PRBM turning angles (Eq. 2.7) whose head loads the FEM solves, follower and dead", true),
+      real("prbm_check.element_mm", 0.2, 0.0, 100.0, "Tip FEM element size in the shaft and head"),
+      real("prbm_check.neck_element_mm", 0.05, 0.0, 100.0, "Tip FEM element size in the neck slab"),
+      real("prbm_check.tolerance_percent", 5.0, 0.0, 100.0,
+           "PRBM-vs-FEM angle error below which the PRBM counts as accurate"),
+
+      // --- insertion-force trajectory (insertion_force/, `needlefem force-trajectory`, paper 000 Eq. 3.2)
+      // Needle radius from needle.radius_mm, insertion speed from motion.insertion_speed_mm_per_s.
+      text("insertion_force.energy_history", "",
+           "history.csv of a `needlefem run` of the brain-tip scene (elastic_energy_j against time_s, with its "
+           "summary.json beside it for the run's speed): the deformation stage's U(x); relative to the case file"),
+      real("insertion_force.fracture_toughness_j_per_m2", 164.0, 0.0, 1e6,
+           "Tissue fracture toughness J_c (paper 000 gives none; default: 164 J/m^2, bovine liver by the same "
+           "energy-based needle-insertion method, Gokgol et al. 2012; Azar & Hayward 2008: 76-185 J/m^2)"),
+      real("insertion_force.rupture_force_n", std::monostate{}, 0.0, 1e4,
+           "Tissue rupture force F_r ending the deformation stage (paper 000: from experiments; required)"),
+      real("insertion_force.shaft_friction_n_per_mm", 0.0, 0.0, 1e4,
+           "Optional shaft friction per inserted length f_s (force f_s l during penetration); 0 = none", false),
+      real("insertion_force.travel_mm", 10.0, 0.0, 1e4, "Total needle (haptic handle) displacement"),
+      real("insertion_force.sample_interval_s", 0.001, 0.0, 1e3,
+           "Time between trajectory samples (the rupture instant is added)"),
   };
 }
 

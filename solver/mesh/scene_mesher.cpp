@@ -82,6 +82,8 @@ int add_bevel_tip(const BevelTip& tip) {
   return out[0].second;
 }
 
+}  // namespace
+
 int add_compliant_tip(const CompliantTip& tip) {
   const double r = tip.radius * kMmPerM, s = tip.shaft * kMmPerM, l = tip.neck_length * kMmPerM;
   const double d = tip.neck_diameter * kMmPerM, head = tip.head_length * kMmPerM;
@@ -95,6 +97,8 @@ int add_compliant_tip(const CompliantTip& tip) {
   if (out.size() != 1) throw std::runtime_error("gmsh: the compliant tip is not a single solid");
   return out[0].second;
 }
+
+namespace {
 
 std::set<int> tags_of(const DimTags& dim_tags) {
   std::set<int> tags;
@@ -146,6 +150,8 @@ void set_mesh_options(const Case& c) {
   gmsh::option::setNumber("Mesh.SaveAll", 0);
 }
 
+}  // namespace
+
 // Curves the second-order mesh without inverting it. gmsh's direct optimiser is fast but on
 // some fillets misses its scaled-Jacobian target and leaves inverted tets (measured: 2 tets for
 // r = 0.83 mm, 20 deg, 0.25 mm). Elastic smoothing before it fixes those, but only when it runs
@@ -167,6 +173,8 @@ std::string optimise_high_order() {
     }
   }
 }
+
+namespace {
 
 std::string generate_and_write(const Case& c, const std::filesystem::path& msh_file) {
   gmsh::model::mesh::generate(3);

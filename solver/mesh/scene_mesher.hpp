@@ -16,6 +16,7 @@
 namespace needlefem {
 
 class Case;
+struct CompliantTip;
 
 struct SceneMeshInfo {
   std::string needle_description;  // empty for the block scene
@@ -29,5 +30,12 @@ struct SceneMeshInfo {
 // Throws CaseError for impossible geometry (naming the violated rule) and std::runtime_error
 // when gmsh fails.
 SceneMeshInfo build_scene_mesh(const Case& c, const std::filesystem::path& msh_file);
+
+// Building blocks for other meshers of the needle alone (prbm_check/), inside a GmshSession:
+// adds paper 000's compliant tip (millimetres, axis +z, rear face z = 0) to the current model as
+// one OpenCASCADE solid and returns its volume tag (call occ::synchronize() after);
+int add_compliant_tip(const CompliantTip& tip);
+// curves a generated second-order mesh without inverting it; returns the passes that ran.
+std::string optimise_high_order();
 
 }  // namespace needlefem

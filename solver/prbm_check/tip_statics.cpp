@@ -1,0 +1,299 @@
+// Static large-rotation FEM of the compliant tip; the formulation is in tip_statics.hpp.
+#include "prbm_check/tip_statics.hpp"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <set>
+#include <stdexcept>
+
+#include <fmt/core.h>
+#include <petscmat.h>
+
+#include "integration/ksp_solver.hpp"
+#include "integration/petsc_arrays.hpp"
+#include "integration/petsc_session.hpp"
+#include "model/tet_geometry.hpp"
+#include "physics/elements/tet_element.hpp"
+#include "physics/material/material.hpp"
+
+namespace needlefem::prbm {
+
+namespace {
+
+constexpr int kNodes = 10;
+constexpr int kElementDofs = 3 * kNodes;
+constexpr int kMaxNewtonIterations = 25;
+constexpr int kMaxHalvings = 8;
+// Converged when ||r_int - f_ext|| <= kResidualTolerance ||f_ext|| on the free dofs, or when the
+// Newton correction is below kCorrectionTolerance max|u|: the residual of the co-rotational law has a
+// round-off floor (its polar decompositions stop at 1e-15 relative, times E = 200 GPa) that small
+// loads reach before the relative residual test.
+constexpr double kResidualTolerance = 1e-7;
+constexpr double kCorrectionTolerance = 1e-10;
+
+}  // namespace
+
+struct CompliantTipStatics::Impl {
+  TetMesh mesh;
+  elements::TetElementKernel kernel;
+  std::vector<elements::ElementGeometry> geometry;
+  std::vector<double> load_weight;  // w_a per node, Σ w_a = 1
+  std::vector<std::size_t> head_elements;
+  double head_volume = 0.0;
+  std::vector<PetscInt> clamped_dofs;
+  std::vector<double> u;  // current displacement, 3 per node
+  double force_n = 0.0;   // load of the current state
+  double tip_length_m = 0.0;
+  Mat matrix = nullptr;
+  Vec rhs = nullptr, step = nullptr;
+  KspSolver solver{PETSC_COMM_SELF};
+
+  Impl(TetMesh m, const material::Material& material)
+      : mesh(std::move(m)), kernel(material, elements::Formulation::displacement) {}
+  ~Impl() {
+    MatDestroy(&matrix);
+    VecDestroy(&rhs);
+    VecDestroy(&step);
+  }
+
+  std::size_t dofs() const { return 3 * mesh.nodes.size(); }
+
+  void element_values(std::size_t e, const std::vector<double>& displacement, double* out) const {
+    const int* nodes = mesh.tet(e);
+    for (int a = 0; a < kNodes; ++a)
+      for (int i = 0; i < 3; ++i) out[3 * a + i] = displacement[3 * nodes[a] + i];
+  }
+
+  // Rotation of the head: polar factor of its volume-averaged deformation gradient (tip_statics.hpp).
+  material::Mat3d head_rotation(const std::vector<double>& displacement) const {
+    material::Mat3d mean_f{};
+    std::vector<double> element_u(kElementDofs);
+    for (std::size_t e : head_elements) {
+      element_values(e, displacement, element_u.data());
+      const auto& g = geometry[e];
+      for (int q = 0; q < g.points; ++q) {
+        const double* G = g.gradient_at(q);
+        for (int i = 0; i < 3; ++i)
+          for (int J = 0; J < 3; ++J) {
+            double f = i == J ? 1.0 : 0.0;
+            for (int a = 0; a < kNodes; ++a) f += element_u[3 * a + i] * G[3 * a + J];
+            mean_f(i, J) += g.weight[q] * f;
+          }
+      }
+    }
+    return material::rotation_of((1.0 / head_volume) * mean_f);
+  }
+
+  static double bending_angle(const material::Mat3d& R) { return std::atan2(R(0, 2), R(2, 2)); }
+
+  // Residual r_int - f_ext (free dofs; clamped entries zero) into rhs, and the tangent of r_int
+  // (clamped rows and columns replaced by the identity) into matrix when with_tangent.
+  // Returns false if an element is inverted.
+  bool assemble(double force, LoadKind kind, bool with_tangent) {
+    const material::Mat3d R = head_rotation(u);
+    const std::array<double, 3> direction =
+        kind == LoadKind::follower ? std::array<double, 3>{R(0, 0), R(1, 0), R(2, 0)} : std::array<double, 3>{1, 0, 0};
+    petsc_check(VecSet(rhs, 0.0), "VecSet");
+    if (with_tangent) petsc_check(MatZeroEntries(matrix), "MatZeroEntries");
+    std::vector<double> element_u(kElementDofs);
+    std::vector<PetscInt> rows(kElementDofs);
+    {
+      WriteArray residual(rhs);
+      for (std::size_t node = 0; node < mesh.nodes.size(); ++node)
+        for (int i = 0; i < 3; ++i) residual.data()[3 * node + i] = -force * load_weight[node] * direction[i];
+      for (std::size_t e = 0; e < mesh.tet_count(); ++e) {
+        element_values(e, u, element_u.data());
+        const elements::ElementResult result = kernel.evaluate(geometry[e], element_u.data(), nullptr, with_tangent);
+        if (result.inverted) return false;
+        const int* nodes = mesh.tet(e);
+        for (int a = 0; a < kNodes; ++a)
+          for (int i = 0; i < 3; ++i) rows[3 * a + i] = 3 * nodes[a] + i;
+        for (int c = 0; c < kElementDofs; ++c) residual.data()[rows[c]] += result.residual[c];
+        if (with_tangent)
+          petsc_check(MatSetValues(matrix, kElementDofs, rows.data(), kElementDofs, rows.data(),
+                                   result.stiffness.data(), ADD_VALUES),
+                      "MatSetValues");
+      }
+      for (PetscInt dof : clamped_dofs) residual.data()[dof] = 0.0;
+    }
+    if (with_tangent) {
+      petsc_check(MatAssemblyBegin(matrix, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+      petsc_check(MatAssemblyEnd(matrix, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+      petsc_check(MatZeroRowsColumns(matrix, static_cast<PetscInt>(clamped_dofs.size()), clamped_dofs.data(), 1.0,
+                                     nullptr, nullptr),
+                  "MatZeroRowsColumns");
+    }
+    return true;
+  }
+
+  // Norm of f_ext for the convergence test: F sqrt(Σ w_a²) (direction is a unit vector).
+  double load_norm(double force) const {
+    double sum = 0.0;
+    for (double w : load_weight) sum += w * w;
+    return std::abs(force) * std::sqrt(sum);
+  }
+
+  // Newton from the current u at load `force`. Returns iterations, or -1 on failure (u undefined).
+  int newton(double force, LoadKind kind, double& linear_seconds) {
+    for (int iteration = 0; iteration <= kMaxNewtonIterations; ++iteration) {
+      if (!assemble(force, kind, true)) return -1;
+      PetscReal norm = 0.0;
+      petsc_check(VecNorm(rhs, NORM_2, &norm), "VecNorm");
+      if (!std::isfinite(norm)) return -1;
+      if (norm <= kResidualTolerance * load_norm(force)) return iteration;
+      if (iteration == kMaxNewtonIterations) break;
+      const auto start = std::chrono::steady_clock::now();
+      if (!solver.factor(matrix) || !solver.solve(rhs, step)) return -1;
+      linear_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      ReadArray delta(step);
+      double largest_correction = 0.0, largest_u = 0.0;
+      for (std::size_t k = 0; k < u.size(); ++k) {
+        u[k] -= delta.data()[k];
+        largest_correction = std::max(largest_correction, std::abs(delta.data()[k]));
+        largest_u = std::max(largest_u, std::abs(u[k]));
+      }
+      if (largest_correction <= kCorrectionTolerance * largest_u) return iteration + 1;
+    }
+    return -1;
+  }
+};
+
+CompliantTipStatics::CompliantTipStatics(const CompliantTip& tip, TetMesh mesh, double youngs_modulus_pa,
+                                         double poisson_ratio) {
+  if (!(youngs_modulus_pa > 0.0) || !(poisson_ratio > -1.0 && poisson_ratio < 0.5))
+    throw std::invalid_argument(
+        fmt::format("compliant tip FEM: need E > 0 and -1 < nu < 0.5, got E = {} Pa, nu = {}", youngs_modulus_pa,
+                    poisson_ratio));
+  if (mesh.nodes_per_tet != kNodes) throw std::invalid_argument("compliant tip FEM: needs 10-node tetrahedra");
+  const material::Material steel("needle", material::CorotationalLinear{youngs_modulus_pa, poisson_ratio});
+  impl_ = std::make_unique<Impl>(std::move(mesh), steel);
+  Impl& m = *impl_;
+  m.tip_length_m = tip.length();
+  const int head = m.mesh.region_index("head");
+  const std::size_t nodes = m.mesh.nodes.size();
+
+  // Element geometry, head-load weights w_a = ∫_head N_a dV / V_head and the load's resultant.
+  m.load_weight.assign(nodes, 0.0);
+  std::vector<double> coordinates(kElementDofs), shape(kNodes);
+  const auto& quadrature = elements::element_quadrature(kNodes);
+  for (std::size_t e = 0; e < m.mesh.tet_count(); ++e) {
+    const int* element = m.mesh.tet(e);
+    for (int a = 0; a < kNodes; ++a)
+      for (int i = 0; i < 3; ++i) coordinates[3 * a + i] = m.mesh.nodes[element[a]][i];
+    m.geometry.push_back(elements::element_geometry(kNodes, coordinates.data()));
+    if (m.mesh.tet_region[e] != head) continue;
+    const auto& g = m.geometry.back();
+    for (int q = 0; q < g.points; ++q) {
+      tet_shape_values(kNodes, quadrature[q].xi, shape.data());
+      for (int a = 0; a < kNodes; ++a) m.load_weight[element[a]] += shape[a] * g.weight[q];
+    }
+    m.head_volume += g.volume;
+    m.head_elements.push_back(e);
+  }
+  if (m.head_elements.empty()) throw std::runtime_error("compliant tip FEM: the mesh has no head elements");
+  double load_z = 0.0;
+  for (std::size_t a = 0; a < nodes; ++a) {
+    m.load_weight[a] /= m.head_volume;
+    load_z += m.load_weight[a] * m.mesh.nodes[a][2];
+  }
+  load_lever_m_ = load_z - (tip.shaft + 0.5 * tip.neck_length);
+
+  // Clamp: every node on the rear face z = 0.
+  for (std::size_t a = 0; a < nodes; ++a)
+    if (std::abs(m.mesh.nodes[a][2]) <= 1e-9 * tip.length())
+      for (int i = 0; i < 3; ++i) m.clamped_dofs.push_back(static_cast<PetscInt>(3 * a + i));
+  if (m.clamped_dofs.empty()) throw std::runtime_error("compliant tip FEM: no node on the rear face z = 0");
+
+  // Matrix pattern: dof rows couple to the 3 dofs of every node sharing an element.
+  std::vector<std::set<int>> neighbours(nodes);
+  for (std::size_t e = 0; e < m.mesh.tet_count(); ++e)
+    for (int a = 0; a < kNodes; ++a) neighbours[m.mesh.tet(e)[a]].insert(m.mesh.tet(e), m.mesh.tet(e) + kNodes);
+  std::vector<PetscInt> nonzeros(3 * nodes);
+  for (std::size_t a = 0; a < nodes; ++a)
+    for (int i = 0; i < 3; ++i) nonzeros[3 * a + i] = static_cast<PetscInt>(3 * neighbours[a].size());
+  const auto n = static_cast<PetscInt>(3 * nodes);
+  petsc_check(MatCreateSeqAIJ(PETSC_COMM_SELF, n, n, 0, nonzeros.data(), &m.matrix), "MatCreateSeqAIJ");
+  petsc_check(MatSetOption(m.matrix, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE), "MatSetOption");
+  petsc_check(VecCreateSeq(PETSC_COMM_SELF, n, &m.rhs), "VecCreateSeq");
+  petsc_check(VecDuplicate(m.rhs, &m.step), "VecDuplicate");
+  m.u.assign(3 * nodes, 0.0);
+}
+
+CompliantTipStatics::~CompliantTipStatics() = default;
+
+std::size_t CompliantTipStatics::dofs() const { return impl_->dofs(); }
+std::size_t CompliantTipStatics::elements() const { return impl_->mesh.tet_count(); }
+
+void CompliantTipStatics::reset() {
+  std::fill(impl_->u.begin(), impl_->u.end(), 0.0);
+  impl_->force_n = 0.0;
+}
+
+TipSolution CompliantTipStatics::solve(double force_n, LoadKind kind) {
+  Impl& m = *impl_;
+  TipSolution solution;
+  double increment = force_n - m.force_n;
+  int halvings = 0;
+  while (m.force_n != force_n) {
+    const double target = std::abs(force_n - m.force_n) <= std::abs(increment) ? force_n : m.force_n + increment;
+    const std::vector<double> saved = m.u;
+    const int iterations = m.newton(target, kind, linear_seconds_);
+    if (iterations < 0) {
+      m.u = saved;
+      if (++halvings > kMaxHalvings)
+        throw std::runtime_error(fmt::format("compliant tip FEM: Newton fails at a load of {:.4g} N even in steps of {:.3g} N",
+                                             target, increment));
+      increment *= 0.5;
+      continue;
+    }
+    solution.newton_iterations += iterations;
+    ++solution.increments;
+    m.force_n = target;
+  }
+  solution.head_rotation_rad = Impl::bending_angle(m.head_rotation(m.u));
+  return solution;
+}
+
+double CompliantTipStatics::linear_rotation_per_newton() {
+  Impl& m = *impl_;
+  const std::vector<double> saved = m.u;
+  std::fill(m.u.begin(), m.u.end(), 0.0);
+  // At rest r_int = 0, so the assembled residual is -f_ext for 1 N: one solve gives u_lin per newton.
+  if (!m.assemble(1.0, LoadKind::dead, true) || !m.solver.factor(m.matrix) || !m.solver.solve(m.rhs, m.step))
+    throw std::runtime_error("compliant tip FEM: the linear stiffness matrix could not be factored");
+  std::vector<double> linear(m.u.size());
+  {
+    ReadArray delta(m.step);
+    for (std::size_t k = 0; k < linear.size(); ++k) linear[k] = -delta.data()[k];
+  }
+  // dtheta/dF from the head rotation at eps u_lin, eps small enough that theta is linear in it
+  // to round-off (the polar factor's departure from linearity is O(eps^2)).
+  double largest = 0.0;
+  for (double v : linear) largest = std::max(largest, std::abs(v));
+  const double eps = 1e-7 * m.tip_length_m / std::max(largest, 1e-300);
+  for (double& v : linear) v *= eps;
+  const double slope = Impl::bending_angle(m.head_rotation(linear)) / eps;
+  m.u = saved;
+  return slope;
+}
+
+double CompliantTipStatics::max_corotated_strain() const {
+  const Impl& m = *impl_;
+  std::vector<double> element_u(kElementDofs);
+  double largest = 0.0;
+  for (std::size_t e = 0; e < m.mesh.tet_count(); ++e) {
+    m.element_values(e, m.u, element_u.data());
+    const auto result = m.kernel.evaluate(m.geometry[e], element_u.data(), nullptr, false);
+    for (const auto& point : result.points) {
+      material::Mat3d F{};
+      for (int k = 0; k < 9; ++k) F.a[k] = point.deformation_gradient[k];
+      const material::Mat3d strain = material::transpose(material::rotation_of(F)) * F - material::Mat3d::identity();
+      largest = std::max(largest, std::sqrt(material::double_dot(strain, strain)));
+    }
+  }
+  return largest;
+}
+
+}  // namespace needlefem::prbm
