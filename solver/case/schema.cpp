@@ -222,6 +222,15 @@ std::vector<KeySpec> build_schema() {
       real("contact.slip_velocity_regularisation_mm_per_s", 1e-2, 0.0, 1e6,
            "eps_v of the friction law t_T = -mu p v_T / sqrt(|v_T|^2 + eps_v^2): below the Coulomb limit "
            "the interface creeps at ~eps_v instead of sticking exactly"),
+      choice("contact.mode", "frictional", {"frictional", "tied"},
+             "Brain-tip scene: frictional = penalty contact with Coulomb friction between the cavity and the "
+             "rigid needle (the tissue may slide and separate); tied = cavity nodes moved rigidly with the "
+             "needle (no sliding), the earlier model kept for comparison"),
+
+      // --- design limits reported in summary.json (paper 001: 0.19 log strain, 10/s, 120 kPa) ---
+      real("thresholds.log_strain", 0.19, 0.0, 100.0, "Limit on the max principal log strain"),
+      real("thresholds.strain_rate_per_s", 10.0, 0.0, 1e9, "Limit on the max principal strain rate"),
+      real("thresholds.stress_pa", 120000.0, 0.0, 1e12, "Limit on the von Mises stress"),
 
       // --- magnet steering of the compliant needle (steering/, `needlefem steer`, paper 000) ----
       // The needle geometry comes from needle.neck_length_mm, neck_diameter_mm, head_length_mm

@@ -21,6 +21,7 @@
 #include "physics/fields/tissue_fields.hpp"
 #include "physics/material/material.hpp"
 #include "physics/mechanics/mechanics_system.hpp"
+#include "run/needle_output.hpp"
 #include "run/output_schedule.hpp"
 
 namespace needlefem::run {
@@ -95,22 +96,25 @@ std::vector<output::FieldSpec> field_specs() {
 // One row per output time; flushed at once so a failed run keeps what it computed.
 class HistoryCsv {
  public:
-  HistoryCsv(const std::filesystem::path& file, const std::vector<std::string>& surfaces) : stream_(file) {
+  // extra_header: further columns (each preceded by a comma) whose cells row() gets as text.
+  HistoryCsv(const std::filesystem::path& file, const std::vector<std::string>& surfaces,
+             const std::string& extra_header)
+      : stream_(file) {
     if (!stream_) throw std::runtime_error("cannot write " + file.string());
     stream_ << "time_s,steps,newton_iterations";
     for (const auto& q : fields::scalar_quantities())
       stream_ << fmt::format(",max_{0},max_{0}_x_mm,max_{0}_y_mm,max_{0}_z_mm", q.name);
     for (const auto& s : surfaces) stream_ << fmt::format(",reaction_{0}_x_n,reaction_{0}_y_n,reaction_{0}_z_n", s);
-    stream_ << ",elastic_energy_j,kinetic_energy_j\n";
+    stream_ << ",elastic_energy_j,kinetic_energy_j" << extra_header << "\n";
   }
   void row(double t, const IdaCounters& counters, const fields::TissueFields& f, const std::vector<Point3>& reactions,
-           double elastic_energy) {
+           double elastic_energy, const std::string& extra_cells) {
     stream_ << fmt::format("{:.9g},{},{}", t, counters.steps, counters.newton_iterations);
     for (const auto& m : f.maximum)
       stream_ << fmt::format(",{:.9g},{:.6g},{:.6g},{:.6g}", m.value, m.position[0] * kMmPerM,
                              m.position[1] * kMmPerM, m.position[2] * kMmPerM);
     for (const auto& r : reactions) stream_ << fmt::format(",{:.9g},{:.9g},{:.9g}", r[0], r[1], r[2]);
-    stream_ << fmt::format(",{:.9g},{:.9g}\n", elastic_energy, f.kinetic_energy);
+    stream_ << fmt::format(",{:.9g},{:.9g}", elastic_energy, f.kinetic_energy) << extra_cells << "\n";
     stream_.flush();
   }
 
@@ -128,11 +132,25 @@ struct RunRecord {
   double elastic_energy_j = 0.0;
   double max_kinetic_to_elastic = 0.0;
   IdaCounters counters;
+  IdaIntegrator::InitialRates initial_rates;  // the probe step giving y'(t0)
   long dofs = 0, displacement_dofs = 0;
   double mesh_s = 0.0, integration_s = 0.0, output_s = 0.0;
 };
 
-  IdaIntegrator::InitialRates initial_rates;  // the probe step giving y'(t0)
+// Paper 001's design limits (thresholds.*) against the maxima over the run: von Mises stress,
+// max principal log strain and max principal strain rate.
+nlohmann::json thresholds_json(const Case& c, const RunRecord& record) {
+  const std::array<std::pair<const char*, int>, 3> limits{
+      {{"log_strain", fields::kLogStrain}, {"strain_rate_per_s", fields::kStrainRate}, {"stress_pa", fields::kVonMises}}};
+  nlohmann::json t;
+  for (const auto& [name, quantity] : limits) {
+    const double limit = c.real(std::string("thresholds.") + name);
+    const double max = record.maxima[quantity].value;
+    if (std::isfinite(max)) t[name] = {{"limit", limit}, {"max", max}, {"pass", max <= limit}};
+  }
+  return t;
+}
+
 nlohmann::json summary_json(const Case& c, const material::Material* material, const SceneModel* scene,
                             const RunRecord& record, double wall_s) {
   nlohmann::json s;
@@ -148,6 +166,7 @@ nlohmann::json summary_json(const Case& c, const material::Material* material, c
     const Point3& r = record.reactions[i];
     s["reactions"][record.surfaces[i]] = {r[0], r[1], r[2]};
   }
+  s["thresholds"] = thresholds_json(c, record);
   s["reactions_note"] = "force (N) the supports exert on the tissue nodes of each named surface, at time_reached_s";
   s["energy"] = {{"elastic_j", record.elastic_energy_j}, {"max_kinetic_to_elastic_ratio", record.max_kinetic_to_elastic},
                  {"density_kg_per_m3", c.real("output.density_kg_per_m3")}};
@@ -162,6 +181,8 @@ nlohmann::json summary_json(const Case& c, const material::Material* material, c
                  {"error_test_failures", record.counters.error_test_failures},
                  {"newton_convergence_failures", record.counters.newton_convergence_failures},
                  {"linear_iterations", record.counters.linear_iterations},
+                 {"initial_rates", {{"converged", record.initial_rates.converged},
+                                    {"iterations", record.initial_rates.iterations}}},
                  {"dofs", record.dofs},
                  {"displacement_dofs", record.displacement_dofs},
                  {"peak_rss_mb", peak_rss_mb()}};
@@ -181,8 +202,6 @@ void print_progress(std::FILE* stream, double t, double end, const IdaCounters& 
   const double eta = t > 0.0 ? integration_s * (end - t) / t : 0.0;
   fmt::print(stream, "run: t = {:.4g} s ({:3.0f}%)  steps {}  Newton its {}  Jacobians {}  wall {:.1f} s  ETA {:.1f} s\n",
              t, end > 0.0 ? 100.0 * t / end : 100.0, k.steps, k.newton_iterations, k.jacobian_setups, integration_s,
-                 {"initial_rates", {{"converged", record.initial_rates.converged},
-                                    {"iterations", record.initial_rates.iterations}}},
              eta);
   std::fflush(stream);
 }
@@ -198,6 +217,7 @@ nlohmann::json run_case(const Case& c, const RunOptions& options) {
   RunRecord record;
   std::unique_ptr<SceneModel> scene;
   std::unique_ptr<material::Material> material;
+  std::unique_ptr<NeedleOutput> needle;
   try {
     scene = std::make_unique<SceneModel>(load_scene_model(c, options.out_dir));
     require_valid_elements(*scene);
@@ -207,41 +227,21 @@ nlohmann::json run_case(const Case& c, const RunOptions& options) {
     const PetscSession petsc(options.petsc_options);
     material = std::make_unique<material::Material>(material::material_from_case(c));
     const auto system = mechanics::MechanicsSystem::from_case(c, mesh);
+    needle = NeedleOutput::attach(c, mesh, *system, material->instantaneous_shear_modulus());
     record.dofs = system->local_size();
     record.displacement_dofs = system->displacement_dofs();
     record.surfaces = reaction_surfaces(mesh, system->dof_map());
     const fields::TissueFieldEvaluator evaluator(*system, mesh, *material, c.real("output.density_kg_per_m3"));
 
     const std::vector<double> times = output_times(c);
-    output::ResultFile file(options.out_dir / "result.h5", mesh, c.to_toml(), field_specs(), times.size());
-    HistoryCsv history(options.out_dir / "history.csv", record.surfaces);
+    std::vector<output::FieldSpec> specs = field_specs();
+    if (needle) for (auto& spec : NeedleOutput::field_specs()) specs.push_back(std::move(spec));
+    output::ResultFile file(options.out_dir / "result.h5", mesh, c.to_toml(), specs, times.size());
+    HistoryCsv history(options.out_dir / "history.csv", record.surfaces, needle ? NeedleOutput::history_header() : "");
     std::array<std::vector<double>, kScalarQuantities> max_over_time;
     for (auto& cells : max_over_time) cells.assign(mesh.tet_count(), 0.0);
 
     IdaIntegrator integrator(*system, ida_options_from_case(c), times.front(), PETSC_COMM_SELF);
-    double integration_s = 0.0;
-    for (const double t : times) {
-      const auto step_start = Clock::now();
-      if (t > integrator.time()) integrator.advance_to(t);
-      integration_s += seconds_since(step_start);
-
-      const auto output_start = Clock::now();
-      const fields::TissueFields f = evaluator.evaluate(integrator.state(), integrator.state_rate());
-      std::vector<std::span<const double>> values{f.displacement, f.velocity, f.cauchy_stress};
-      for (const auto& cells : f.cell_maximum) values.emplace_back(cells);
-      for (int q = 0; q < kScalarQuantities; ++q) {
-        for (std::size_t e = 0; e < mesh.tet_count(); ++e)
-          max_over_time[q][e] = std::max(max_over_time[q][e], f.cell_maximum[q][e]);
-        values.emplace_back(max_over_time[q]);
-        record.maxima[q].update(f.maximum[q], t);
-      }
-      file.append_time(t, values);
-
-      record.reactions.clear();
-      for (const auto& s : record.surfaces) record.reactions.push_back(system->reaction_force(integrator.state(), s));
-      record.elastic_energy_j = system->elastic_energy(integrator.state());
-      if (record.elastic_energy_j > 0.0)
-        record.max_kinetic_to_elastic = std::max(record.max_kinetic_to_elastic, f.kinetic_energy / record.elastic_energy_j);
     {
       Vec atol = nullptr;
       petsc_check(VecDuplicate(integrator.state(), &atol), "VecDuplicate");
@@ -259,8 +259,37 @@ nlohmann::json run_case(const Case& c, const RunOptions& options) {
         fmt::print(options.progress, "run: warning: the probe step for consistent initial rates did not converge "
                    "(last update {:.3g}); IDA starts from zero rates\n", record.initial_rates.last_update);
     }
+    double integration_s = 0.0;
+    for (const double t : times) {
+      const auto step_start = Clock::now();
+      if (t > integrator.time()) integrator.advance_to(t);
+      integration_s += seconds_since(step_start);
+
+      const auto output_start = Clock::now();
+      const fields::TissueFields f = evaluator.evaluate(integrator.state(), integrator.state_rate());
+      std::vector<std::span<const double>> values{f.displacement, f.velocity, f.cauchy_stress};
+      for (const auto& cells : f.cell_maximum) values.emplace_back(cells);
+      for (int q = 0; q < kScalarQuantities; ++q) {
+        for (std::size_t e = 0; e < mesh.tet_count(); ++e)
+          max_over_time[q][e] = std::max(max_over_time[q][e], f.cell_maximum[q][e]);
+        values.emplace_back(max_over_time[q]);
+        record.maxima[q].update(f.maximum[q], t);
+      }
+      if (needle) {
+        needle->evaluate(t, integrator.state(), integrator.state_rate());
+        values.emplace_back(needle->pressure());
+        values.emplace_back(needle->slip());
+      }
+      file.append_time(t, values);
+
+      record.reactions.clear();
+      for (const auto& s : record.surfaces) record.reactions.push_back(system->reaction_force(integrator.state(), s));
+      record.elastic_energy_j = system->elastic_energy(integrator.state());
+      if (record.elastic_energy_j > 0.0)
+        record.max_kinetic_to_elastic = std::max(record.max_kinetic_to_elastic, f.kinetic_energy / record.elastic_energy_j);
       record.counters = integrator.counters();
-      history.row(t, record.counters, f, record.reactions, record.elastic_energy_j);
+      history.row(t, record.counters, f, record.reactions, record.elastic_energy_j,
+                  needle ? needle->history_cells() : "");
       record.time_reached_s = t;
       record.output_times_written = file.completed_times();
       record.output_s += seconds_since(output_start);
@@ -270,12 +299,14 @@ nlohmann::json run_case(const Case& c, const RunOptions& options) {
     file.close();
   } catch (const std::exception& e) {
     nlohmann::json failed = summary_json(c, material.get(), scene.get(), record, seconds_since(start));
+    if (needle) failed.update(needle->summary());
     failed["status"] = "failed";
     failed["error"] = e.what();
     write_json_atomically(summary_file, failed);
     throw;
   }
-  const nlohmann::json summary = summary_json(c, material.get(), scene.get(), record, seconds_since(start));
+  nlohmann::json summary = summary_json(c, material.get(), scene.get(), record, seconds_since(start));
+  if (needle) summary.update(needle->summary());
   write_json_atomically(summary_file, summary);
   return summary;
 }

@@ -1,7 +1,8 @@
-// Brain-tip scene (paper 001 cube, coarse mesh) under IDA: the cavity nodes follow the needle's
-// rigid motion, and the tissue is in global equilibrium (reaction on the skull faces balances
-// the force the needle exerts: their sum vanishes relative to either). Reactions are the forces
-// the supports exert on the tissue.
+// Brain-tip scene (paper 001 cube, coarse mesh) under IDA with contact.mode = "tied": the cavity
+// nodes follow the needle's rigid motion, and the tissue is in global equilibrium (reaction on
+// the skull faces balances the force the needle exerts: their sum vanishes relative to either).
+// Reactions are the forces the supports exert on the tissue. (Frictional contact, the default:
+// tests/run.)
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -18,7 +19,7 @@ TEST(MechanicsBrainTip, CavityFollowsNeedleAndTissueIsInEquilibrium) {
   Problem problem(
       "[tissue]\ncore_element_mm = 1.5\nouter_element_mm = 3.0\n[needle]\nradius_mm = 0.5\nbevel_deg = 20\n"
       "fillet_mm = 0.25\n[motion]\ninsertion_speed_mm_per_s = 1.0\n"
-      "rotation_speed_deg_per_s = 180\nduration_s = 0.1\n");
+      "rotation_speed_deg_per_s = 180\nduration_s = 0.1\n[contact]\nmode = \"tied\"\n");
   IdaOptions options;
   options.relative_tolerance = 1e-5;
   options.absolute_tolerance = 1e-12;

@@ -88,6 +88,12 @@ PenaltyContact::PenaltyContact(const TetMesh& mesh, const std::string& surface,
         }
       const Point3 normal = cross(tangent_xi, tangent_eta);
       point.area_weight = q.weight * std::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
+      if (parameters.reference_gap_offset) {
+        Point3 X{};
+        for (int a = 0; a < m; ++a)
+          for (int c = 0; c < 3; ++c) X[c] += point.shape[a] * mesh.nodes[face_nodes_[f * m + a]][c];
+        point.gap_offset = obstacle_->project(X, 0.0).gap;
+      }
       area += point.area_weight;
       face.points.push_back(point);
     }
@@ -116,9 +122,10 @@ FaceTerms PenaltyContact::face_terms(std::size_t face, const double* x, const do
     // Touching points (g = 0, e.g. every point of a surface that starts in contact) count as
     // closed: their penalty stiffness then enters the Newton matrix evaluated at the start state,
     // without which IDA's modified Newton never sees the contact it is about to create.
-    if (p.gap > 0.0) continue;
+    const double gap = p.gap - point.gap_offset;
+    if (gap > 0.0) continue;
     const Point3& normal = p.normal;
-    const double pressure = -penalty * p.gap;
+    const double pressure = -penalty * gap;
     Point3 relative, slip, traction;
     for (int i = 0; i < 3; ++i) relative[i] = velocity[i] - p.velocity[i];
     const double normal_rate = relative[0] * normal[0] + relative[1] * normal[1] + relative[2] * normal[2];

@@ -89,6 +89,7 @@ DirichletConditions brain_tip_conditions(const Case& input, const TetMesh& mesh,
   const double duration = input.real("motion.duration_s");
   ConditionBuilder builder(mesh, map);
   builder.constrain_surface("fixed", {0, 1, 2}, builder.add_field(kZeroField));
+  if (input.text("contact.mode") != "tied") return builder.finish();
   builder.constrain_surface("cavity", {0, 1, 2},
                             builder.add_field([speed, angular_speed, duration](const Point3& X, double t) {
                               const double elapsed = std::clamp(t, 0.0, duration);

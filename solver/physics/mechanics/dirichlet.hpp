@@ -12,12 +12,13 @@
 // z_min, z_max; consistent conditions (all derived from ū) agree there anyway.
 //
 // Brain-tip scene (scene.kind = "brain-tip", paper 001): the five skull faces ("fixed") are
-// fixed; the entry face is free; the tissue nodes on the needle cavity ("cavity") follow the
+// fixed; the entry face is free. The needle acts on the cavity through frictional contact
+// (physics/contact/needle_contact.hpp, added by the caller as a surface load), unless
+// contact.mode = "tied": then the tissue nodes on the needle cavity ("cavity") follow the
 // rigid needle: with t' = min(t, motion.duration_s), insertion speed v and rotation speed ω
 // (motion.insertion_speed_mm_per_s, motion.rotation_speed_deg_per_s) about the needle axis
 // (the z axis through the centre of the entry face, pointing into the tissue),
 //   x(X, t) = R_z(ω t') X + v t' e_z,   u = x - X.
-// (Sliding and separation on the cavity come with contact; here the cavity is tied to the needle.)
 #pragma once
 
 #include <functional>

@@ -1,0 +1,100 @@
+// Equations: needle_contact.hpp.
+#include "physics/contact/needle_contact.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+
+#include "case/case.hpp"
+#include "geometry/needle_tip.hpp"
+
+namespace needlefem::contact {
+
+namespace {
+
+const std::string kCavity = "cavity";
+
+// Shape-function values at a triangle's centroid: TRI3 1/3 each; TRI6 corners -1/9, edges 4/9.
+double centroid_weight(int nodes_per_face, int a) {
+  if (nodes_per_face == 3) return 1.0 / 3.0;
+  return a < 3 ? -1.0 / 9.0 : 4.0 / 9.0;
+}
+
+}  // namespace
+
+bool needle_contact_enabled(const Case& input) {
+  return input.text("scene.kind") == "brain-tip" && input.text("contact.mode") == "frictional";
+}
+
+NeedleContact::NeedleContact(const Case& input, const TetMesh& mesh, double reference_modulus) : mesh_(mesh) {
+  const NeedleTip tip = needle_tip_from_case(input);
+  if (tip.kind != NeedleTip::Kind::Bevel)
+    throw input.error("contact.mode", "frictional contact needs a convex needle (needle.kind = \"bevel\"); the "
+                                      "compliant tip's neck is not convex: use contact.mode = \"tied\"");
+  needle_ = std::make_shared<RigidNeedle>(tip.bevel, needle_motion_from_case(input));
+  ContactParameters parameters = contact_parameters_from_case(input, reference_modulus);
+  parameters.reference_gap_offset = true;  // the cavity is meshed from the needle's shape
+  contact_ = std::make_shared<PenaltyContact>(mesh, kCavity, needle_, parameters);
+  std::map<int, std::pair<double, int>> penalty_sum;  // node -> (sum of face penalties, faces)
+  for (std::size_t f = 0; f < contact_->face_count(); ++f)
+    for (int a = 0; a < contact_->nodes_per_face(); ++a) {
+      auto& entry = penalty_sum[contact_->face_nodes(f)[a]];
+      entry.first += contact_->penalty(f);
+      entry.second += 1;
+    }
+  for (const auto& [node, sum] : penalty_sum) {
+    cavity_nodes_.push_back(node);
+    node_penalty_.push_back(sum.first / sum.second);
+  }
+}
+
+NeedleLoad NeedleContact::load_on_needle(double t, const double* y, const double* ydot,
+                                         const mechanics::DofMap& dofs) const {
+  const ContactResultant r = contact_->resultant(t, y, ydot, dofs, needle_->rear_face_centre(t));
+  return {r.force_on_obstacle, r.moment_on_obstacle, r.contact_area};
+}
+
+NeedleContact::SurfaceFields NeedleContact::surface_fields(double t, const double* y,
+                                                           const mechanics::DofMap& dofs) const {
+  SurfaceFields out;
+  out.pressure.assign(mesh_.nodes.size(), 0.0);
+  out.slip.assign(mesh_.nodes.size(), 0.0);
+  for (std::size_t i = 0; i < cavity_nodes_.size(); ++i) {
+    const int node = cavity_nodes_[i];
+    const Point3& X = mesh_.nodes[node];
+    Point3 x;
+    for (int c = 0; c < 3; ++c) x[c] = X[c] + y[dofs.dof(node, c)];
+    const ObstacleProjection p = needle_->project(x, t);
+    out.pressure[node] = node_penalty_[i] * std::max(0.0, -p.gap);
+    const Point3 chi = needle_->material_point(X, t);
+    Point3 relative;
+    for (int c = 0; c < 3; ++c) relative[c] = x[c] - chi[c];
+    const double normal_part = relative[0] * p.normal[0] + relative[1] * p.normal[1] + relative[2] * p.normal[2];
+    double slip2 = 0.0;
+    for (int c = 0; c < 3; ++c) slip2 += std::pow(relative[c] - normal_part * p.normal[c], 2);
+    out.slip[node] = std::sqrt(slip2);
+  }
+  return out;
+}
+
+NeedleContact::InitialGap NeedleContact::initial_gap() const {
+  const double inf = std::numeric_limits<double>::infinity();
+  InitialGap gap{{inf, -inf}, {inf, -inf}};
+  auto include = [&](GapRange& range, const Point3& x) {
+    const double g = needle_->project(x, 0.0).gap;
+    range.min = std::min(range.min, g);
+    range.max = std::max(range.max, g);
+  };
+  for (int node : cavity_nodes_) include(gap.nodes, mesh_.nodes[node]);
+  const int m = contact_->nodes_per_face();
+  for (std::size_t f = 0; f < contact_->face_count(); ++f) {
+    Point3 centroid{};
+    for (int a = 0; a < m; ++a)
+      for (int c = 0; c < 3; ++c) centroid[c] += centroid_weight(m, a) * mesh_.nodes[contact_->face_nodes(f)[a]][c];
+    include(gap.centroids, centroid);
+  }
+  return gap;
+}
+
+}  // namespace needlefem::contact

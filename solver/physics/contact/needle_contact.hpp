@@ -1,0 +1,90 @@
+// Frictional contact between the tissue cavity and the rigid needle of the brain-tip scene
+// (paper 001), and the quantities `needlefem run` reports about it.
+//
+// Contact law: penalty_contact.hpp (penalty normal ε_N = c μ₀/h_face, slip-velocity-regularised
+// Coulomb friction μ, at the surface quadrature points of the "cavity" faces). Obstacle:
+// needle_obstacle.hpp (bevel or rounded tip, insertion v t' e_z and rotation ω t' about z).
+// Gaps are measured from each quadrature point's own gap at t = 0 (reference_gap_offset): the
+// cavity is meshed from the needle's shape, so the undeformed tissue touches the needle exactly
+// and only the faceting of its curved faces (initial_gap(), reported) separates the two.
+// contact.mode = "tied" keeps the earlier model instead (cavity nodes moved rigidly with the
+// needle by Dirichlet conditions, physics/mechanics/dirichlet.hpp) for comparison.
+//
+// Resultants on the needle (Newton's third law on penalty_contact's tractions t on the tissue):
+//   F = -∫ t dA₀,   M = -∫ (x - x_ref(t)) × t dA₀,   x_ref = centre of the rear face = v t' e_z;
+// axial force F·e_z (negative = the tissue resists insertion along +z), torque about the axis
+// M·e_z (opposes the rotation ω when friction drags the tissue).
+// Surface fields, evaluated at each cavity node a with the same law (visualisation; the forces
+// use the quadrature points):
+//   pressure p_a = ε̄_a ⟨-g(x_a)⟩     (ε̄_a: mean penalty of the cavity faces around a),
+//   slip     s_a = |(I - n nᵀ)(x_a - χ(X_a, t))|, χ(X_a, t) = where the needle point that touched
+//            X_a at t = 0 (zero initial gap) is now: the tangential displacement of the tissue
+//            relative to the needle since t = 0 (0 for a tied cavity).
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "model/tet_mesh.hpp"
+#include "physics/contact/needle_obstacle.hpp"
+#include "physics/contact/penalty_contact.hpp"
+#include "physics/mechanics/dof_map.hpp"
+
+namespace needlefem {
+class Case;
+}
+
+namespace needlefem::contact {
+
+// True for the brain-tip scene with contact.mode = "frictional".
+bool needle_contact_enabled(const Case& input);
+
+struct NeedleLoad {
+  Point3 force{};   // on the needle, N
+  Point3 moment{};  // on the needle about the centre of its rear face, N m
+  double contact_area = 0.0;  // reference area of the cavity where g <= 0, m²
+  double axial_force() const { return force[2]; }
+  double torque() const { return moment[2]; }
+};
+
+struct GapRange {
+  double min = 0.0, max = 0.0;  // m
+};
+
+class NeedleContact {
+ public:
+  // The needle of the case's [needle] and [motion], the cavity of `mesh` (which must outlive
+  // this), [contact] parameters; μ₀ = the tissue's instantaneous shear modulus. Throws
+  // CaseError for a needle kind that is not convex (compliant).
+  NeedleContact(const Case& input, const TetMesh& mesh, double reference_modulus);
+
+  std::shared_ptr<const mechanics::SurfaceLoad> surface_load() const { return contact_; }
+  const RigidNeedle& needle() const { return *needle_; }
+  const PenaltyContact& contact() const { return *contact_; }
+
+  // y, ydot: displacement parts of the state (dof numbering of `dofs`).
+  NeedleLoad load_on_needle(double t, const double* y, const double* ydot, const mechanics::DofMap& dofs) const;
+
+  struct SurfaceFields {
+    std::vector<double> pressure;  // Pa, per mesh node, 0 off the cavity
+    std::vector<double> slip;      // m, per mesh node, 0 off the cavity
+  };
+  SurfaceFields surface_fields(double t, const double* y, const mechanics::DofMap& dofs) const;
+
+  // Gap of the undeformed cavity against the needle at t = 0 at the cavity nodes (which the
+  // mesher puts on the shape) and at the face centroids (off it by the faces' interpolation
+  // error): zero up to the mesh's geometric accuracy, since both come from one shape.
+  struct InitialGap {
+    GapRange nodes, centroids;
+  };
+  InitialGap initial_gap() const;
+
+ private:
+  const TetMesh& mesh_;
+  std::shared_ptr<const RigidNeedle> needle_;
+  std::shared_ptr<const PenaltyContact> contact_;
+  std::vector<int> cavity_nodes_;
+  std::vector<double> node_penalty_;  // ε̄_a per cavity node (same order)
+};
+
+}  // namespace needlefem::contact

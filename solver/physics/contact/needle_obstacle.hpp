@@ -1,0 +1,84 @@
+// The rigid bevel needle of paper 001 as a contact obstacle (rigid_obstacle.hpp): signed
+// distance g, normal n = ∂g/∂x, its gradient G = ∂n/∂x, and the needle's rigid velocity field.
+//
+// Shape (needle frame, geometry/needle_tip.hpp): the solid needle is C = A ∩ B with
+//   A = {ξ² + η² <= r²}                      (the cylinder; the shaft continues behind z = 0),
+//   B = {(ξ, ζ) in P} x (all η)              (the side profile P extruded across y),
+// P = {ξ >= -r, ζ <= h(ξ)}: below the bevel line and the fillet arc of radius τ, right of the
+// generator ξ = -r. P is the Minkowski sum of the wedge W' (apex at the fillet centre c,
+// bounded by the bevel line and the generator both moved inwards by τ; opening angle α) and a
+// disc of radius τ, so its signed distance is exact everywhere as sd_P = sd_W' - τ: the bevel
+// plane (G = 0), the fillet cylinder around c (2-D normal (q - c)/|q - c|, G = (I - n nᵀ)/|q - c|
+// in the x-z block) or the generator plane (G = 0). The rounded tip (τ = r) is the capsule
+// "ray {ξ = η = 0, ζ <= shaft} ⊕ ball(r)": g = |x - p| - r with p the closest point of the ray,
+// G = (I - n nᵀ - [ζ < shaft] e_z e_zᵀ)/|x - p|.
+// Both A and B are convex, hence so is C, and the closest point is unique outside C:
+//   inside (sd_A <= 0 and sd_B <= 0): g = max(sd_A, sd_B), exact (the nearest boundary point is
+//     on the nearer of the two surfaces), with that surface's n and G. The normal jumps across the
+//     bisector of the bevel-cylinder edge; penetrations are a small fraction of the element size
+//     (penalty_contact.hpp), so only points within that distance of the edge can see the jump.
+//   outside: the projection onto A if it lies in B (g = sd_A), else the projection onto B if it
+//     lies in A (g = sd_B), else the closest point p of the edge curve ∂A ∩ ∂B,
+//       c(θ) = (r cos θ, r sin θ, h(r cos θ)),  θ in [-π, π],
+//     found by sampling, golden-section search and a Newton polish of (x - c)·c' = 0; g = |x - p|, n = (x - p)/g and
+//       G = (I - n nᵀ - c' c'ᵀ / (|c'|² - (x - c)·c'')) / g      (differentiate (x - c(θ))·c'(θ) = 0),
+//     except at θ = ±π (the fillet's foremost-left point, where the two edge branches meet at a
+//     kink and the closest point stays put): G = (I - n nᵀ)/g. The penalty acts only where g <= 0,
+//     so the edge branch gives exact gaps (the initial-gap check) and the sign, never forces.
+// Pose (the needle frame coincides with the scene frame at t = 0; axis z through the centre of
+// the entry face, rear face of the tip at z = 0): with t' = min(max(t, 0), duration),
+//   x = R_z(ω t') ξ + v t' e_z;    reference point (centre of the rear face) = v t' e_z.
+// Rigid velocity field, evaluated at the tissue point x itself (the needle material point that
+// coincides with x; at active points |x - p| is the penalty penetration, a fraction of h):
+//   w(x) = v e_z + ω e_z × (x - v t' e_z),   W = ∂w/∂x = ω [e_z]×,
+// both zero for t > duration (the needle stops).
+#pragma once
+
+#include <memory>
+
+#include "geometry/needle_tip.hpp"
+#include "physics/contact/rigid_obstacle.hpp"
+
+namespace needlefem {
+class Case;
+}
+
+namespace needlefem::contact {
+
+// Constant-velocity insertion along +z and rotation about z for t in [0, duration], then rest.
+struct NeedleMotion {
+  double insertion_speed = 0.0;  // v, m/s
+  double rotation_speed = 0.0;   // ω, rad/s
+  double duration = 0.0;         // s
+  double elapsed(double t) const;
+  // t in [0, duration]: velocities are v, ω, else 0. The end point counts as moving so that the
+  // implicit step that lands on t = duration integrates the motion up to it.
+  bool moving(double t) const;
+};
+
+// motion.insertion_speed_mm_per_s, motion.rotation_speed_deg_per_s, motion.duration_s.
+NeedleMotion needle_motion_from_case(const Case& input);
+
+class RigidNeedle final : public RigidObstacle {
+ public:
+  // Throws std::invalid_argument for tips that break their validity rules.
+  RigidNeedle(const BevelTip& tip, const NeedleMotion& motion);
+
+  ObstacleProjection project(const Point3& x, double t) const override;
+  // Gap, normal and normal gradient in the needle frame (no velocity).
+  ObstacleProjection project_in_needle_frame(const Point3& xi) const;
+  // Where the needle point that sat at X at t = 0 is at time t.
+  Point3 material_point(const Point3& X, double t) const;
+  Point3 rear_face_centre(double t) const;
+  const NeedleMotion& motion() const { return motion_; }
+
+ private:
+  ObstacleProjection project_rounded(const Point3& xi) const;
+  ObstacleProjection project_bevel(const Point3& xi) const;
+  ObstacleProjection project_on_edge(const Point3& xi) const;
+
+  BevelTip tip_;
+  NeedleMotion motion_;
+};
+
+}  // namespace needlefem::contact

@@ -1,0 +1,84 @@
+#include "run/needle_output.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/core.h>
+
+#include "case/case.hpp"
+#include "integration/petsc_arrays.hpp"
+#include "physics/mechanics/mechanics_system.hpp"
+
+namespace needlefem::run {
+
+namespace {
+
+constexpr double kMmPerM = 1e3;
+constexpr double kMm2PerM2 = 1e6;
+
+double largest_magnitude(const std::vector<double>& values) {
+  double largest = 0.0;
+  for (double v : values) largest = std::max(largest, std::abs(v));
+  return largest;
+}
+
+}  // namespace
+
+std::unique_ptr<NeedleOutput> NeedleOutput::attach(const Case& input, const TetMesh& mesh,
+                                                   mechanics::MechanicsSystem& system, double reference_modulus) {
+  if (!contact::needle_contact_enabled(input)) return nullptr;
+  return std::make_unique<NeedleOutput>(input, mesh, system, reference_modulus);
+}
+
+NeedleOutput::NeedleOutput(const Case& input, const TetMesh& mesh, mechanics::MechanicsSystem& system,
+                           double reference_modulus)
+    : system_(system), contact_(input, mesh, reference_modulus), initial_gap_(contact_.initial_gap()) {
+  system.add_surface_load(contact_.surface_load());
+}
+
+std::vector<output::FieldSpec> NeedleOutput::field_specs() {
+  using output::FieldCentre, output::FieldType;
+  return {{"contact_pressure", FieldCentre::node, FieldType::scalar, "Pa"},
+          {"contact_slip", FieldCentre::node, FieldType::scalar, "m"}};
+}
+
+std::string NeedleOutput::history_header() {
+  return ",needle_force_x_n,needle_force_y_n,needle_force_z_n,needle_moment_x_n_m,needle_moment_y_n_m,"
+         "needle_moment_z_n_m,contact_area_mm2";
+}
+
+void NeedleOutput::evaluate(double t, Vec y, Vec ydot) {
+  const ReadArray state(y), rate(ydot);
+  load_ = contact_.load_on_needle(t, state.data(), rate.data(), system_.dof_map());
+  fields_ = contact_.surface_fields(t, state.data(), system_.dof_map());
+  times_.push_back(t);
+  axial_force_.push_back(load_.axial_force());
+  torque_.push_back(load_.torque());
+}
+
+std::string NeedleOutput::history_cells() const {
+  const Point3 &f = load_.force, &m = load_.moment;
+  return fmt::format(",{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}", f[0], f[1], f[2], m[0], m[1], m[2],
+                     load_.contact_area * kMm2PerM2);
+}
+
+nlohmann::json NeedleOutput::summary() const {
+  nlohmann::json s;
+  s["needle"] = {{"max_axial_force_n", largest_magnitude(axial_force_)},
+                 {"max_torque_n_m", largest_magnitude(torque_)},
+                 {"time_s", times_},
+                 {"axial_force_n", axial_force_},
+                 {"torque_n_m", torque_},
+                 {"note", "forces on the needle: axial = along +z (the insertion direction; negative = the tissue "
+                          "resists insertion), torque about +z (sign opposite to the rotation = resisting it); "
+                          "max_* are the largest magnitudes over the output times"}};
+  const auto range = [](const contact::GapRange& g) { return nlohmann::json{g.min * kMmPerM, g.max * kMmPerM}; };
+  s["contact"] = {{"initial_gap_nodes_mm", range(initial_gap_.nodes)},
+                  {"initial_gap_centroids_mm", range(initial_gap_.centroids)},
+                  {"initial_gap_note", "[min, max] gap of the undeformed cavity to the needle at t = 0, at the cavity "
+                                       "nodes and at the face centroids"},
+                  {"cavity_faces", contact_.contact().face_count()}};
+  return s;
+}
+
+}  // namespace needlefem::run

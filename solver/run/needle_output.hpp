@@ -1,0 +1,66 @@
+// What `needlefem run` adds for the rigid needle of the brain-tip scene in frictional contact
+// (contact.mode = "frictional", physics/contact/needle_contact.hpp): it registers the contact as
+// a surface load of the mechanics system and, at every output time, reports
+//   history.csv  needle_force_{x,y,z}_n, needle_moment_{x,y,z}_n_m (on the needle, moment about
+//                the centre of its rear face; z = axial force and torque about the axis),
+//                contact_area_mm2 (reference area of the cavity in contact);
+//   result.h5    node fields contact_pressure (Pa) and contact_slip (m): values at the cavity
+//                nodes, 0 at every other node (result.h5 holds tet cells only, so the cavity
+//                faces carry no cells of their own; ParaView shows them on the tissue surface);
+//   summary.json "needle": largest |axial force| and |torque| over the output times with their
+//                signed histories, and "contact": the initial gap of the cavity against the
+//                needle and the penalty parameters.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+#include <petscvec.h>
+
+#include "output/result_file.hpp"
+#include "physics/contact/needle_contact.hpp"
+
+namespace needlefem {
+class Case;
+}
+namespace needlefem::mechanics {
+class MechanicsSystem;
+}
+
+namespace needlefem::run {
+
+class NeedleOutput {
+ public:
+  // nullptr unless needle contact is on for this case; otherwise builds the contact and adds it
+  // to `system` (both `mesh` and `system` must outlive the result).
+  static std::unique_ptr<NeedleOutput> attach(const Case& input, const TetMesh& mesh,
+                                              mechanics::MechanicsSystem& system, double reference_modulus);
+
+  NeedleOutput(const Case& input, const TetMesh& mesh, mechanics::MechanicsSystem& system,
+               double reference_modulus);
+
+  static std::vector<output::FieldSpec> field_specs();
+  static std::string history_header();  // starts with a comma
+
+  // Evaluates the needle load and the surface fields of the state (y, y') at time t.
+  void evaluate(double t, Vec y, Vec ydot);
+  // Of the last evaluate(): node field values in field_specs() order, and the history cells.
+  const std::vector<double>& pressure() const { return fields_.pressure; }
+  const std::vector<double>& slip() const { return fields_.slip; }
+  std::string history_cells() const;  // starts with a comma
+  const contact::NeedleLoad& load() const { return load_; }
+
+  nlohmann::json summary() const;
+
+ private:
+  const mechanics::MechanicsSystem& system_;
+  contact::NeedleContact contact_;
+  contact::NeedleContact::InitialGap initial_gap_;
+  contact::NeedleLoad load_;
+  contact::NeedleContact::SurfaceFields fields_;
+  std::vector<double> times_, axial_force_, torque_;
+};
+
+}  // namespace needlefem::run

@@ -1,0 +1,164 @@
+// The rigid needle obstacle (physics/contact/needle_obstacle.hpp) against independent
+// references: gaps of points placed at known distances from each face of the tip (cylinder,
+// bevel plane, fillet, bevel-cylinder edge, hemisphere), n = ∂g/∂x and G = ∂n/∂x by central
+// differences, the rigid velocity field against the time derivative of the pose
+// (∂g/∂t = -n·w at a fixed point, and w = d/dt of the material point), and W = ∂w/∂x.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <numbers>
+
+#include "physics/contact/needle_obstacle.hpp"
+
+namespace needlefem::contact {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr double r = 0.5e-3, shaft = 0.1e-3, tau = 0.25e-3;
+const double alpha = 20.0 * kPi / 180.0;
+
+BevelTip bevel_tip() { return {r, alpha, tau, shaft}; }
+BevelTip rounded_tip() { return {r, alpha, r, shaft}; }
+const NeedleMotion kMotion{1e-3, kPi, 0.1};  // 1 mm/s, 180 deg/s for 0.1 s
+
+Point3 add(const Point3& a, const Point3& b, double s = 1.0) { return {a[0] + s * b[0], a[1] + s * b[1], a[2] + s * b[2]}; }
+Point3 unit(const Point3& a) {
+  const double n = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+  return {a[0] / n, a[1] / n, a[2] / n};
+}
+
+// Points on the bevel tip's faces with their outward normals (needle frame).
+struct SurfacePoint {
+  const char* face;
+  Point3 x, normal;
+};
+std::vector<SurfacePoint> bevel_surface_points() {
+  const BevelTip tip = bevel_tip();
+  const double phi = 2.0;  // rad, on the shaft cylinder
+  const double xb = 0.2 * r, yb = 0.3 * r;  // on the bevel plane
+  const double psi = 0.6 * kPi;             // on the fillet arc, angle from +x in the x-z plane
+  const double xf = tip.fillet_centre_x() + tau * std::cos(psi), zf = tip.fillet_centre_z() + tau * std::sin(psi);
+  const double theta = 0.4;  // on the heel side of the bevel-cylinder edge
+  const Point3 edge{r * std::cos(theta), r * std::sin(theta), tip.profile_top(r * std::cos(theta))};
+  const Point3 bevel_normal{std::cos(alpha), 0.0, std::sin(alpha)};
+  const Point3 cylinder_normal{std::cos(theta), std::sin(theta), 0.0};
+  return {{"cylinder", {r * std::cos(phi), r * std::sin(phi), 0.5 * shaft}, {std::cos(phi), std::sin(phi), 0.0}},
+          {"bevel", {xb, yb, tip.profile_top(xb)}, bevel_normal},
+          {"fillet", {xf, 0.1 * r, zf}, {std::cos(psi), 0.0, std::sin(psi)}},
+          // Outside the edge along the bisector of its two face normals the closest point is the
+          // edge point itself.
+          {"edge", edge, unit(add(bevel_normal, cylinder_normal))}};
+}
+
+TEST(NeedleObstacle, GapOfPointsAtKnownDistancesFromEachFace) {
+  const RigidNeedle needle(bevel_tip(), kMotion);
+  for (const auto& s : bevel_surface_points())
+    for (double d : {-2e-6, 0.0, 1e-6, 2e-5}) {
+      // At the edge itself the normal is any in the cone of its faces; inside, the nearer face wins.
+      if (std::string(s.face) == "edge" && d <= 0.0) continue;
+      const ObstacleProjection p = needle.project_in_needle_frame(add(s.x, s.normal, d));
+      EXPECT_NEAR(p.gap, d, 1e-15) << s.face << " d = " << d;
+      for (int i = 0; i < 3; ++i) EXPECT_NEAR(p.normal[i], s.normal[i], 1e-9) << s.face << " d = " << d;
+    }
+  // Inside near the edge: minus the distance to the nearer face (bevel plane or cylinder).
+  const auto edge = bevel_surface_points()[3];
+  const Point3 inside = add(edge.x, edge.normal, -1e-6);
+  const BevelTip tip = bevel_tip();
+  const double to_bevel = (inside[0] - r) * std::cos(alpha) + (inside[2] - shaft) * std::sin(alpha);
+  const double to_cylinder = std::hypot(inside[0], inside[1]) - r;
+  EXPECT_NEAR(needle.project_in_needle_frame(inside).gap, std::max(to_bevel, to_cylinder), 1e-18);
+  EXPECT_LT(std::max(to_bevel, to_cylinder), 0.0);
+  EXPECT_NEAR(tip.profile_top(r), shaft, 1e-18);  // the bevel plane passes through (r, ., shaft)
+}
+
+TEST(NeedleObstacle, RoundedTipIsCapsule) {
+  const RigidNeedle needle(rounded_tip(), kMotion);
+  const Point3 dir = unit({0.3, -0.4, 0.8});
+  for (double d : {-1e-5, 0.0, 3e-5}) {
+    const ObstacleProjection cap = needle.project_in_needle_frame(add({0.0, 0.0, shaft}, dir, r + d));
+    EXPECT_NEAR(cap.gap, d, 1e-15);
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(cap.normal[i], dir[i], 1e-12);
+    const ObstacleProjection side = needle.project_in_needle_frame({0.0, -(r + d), -0.2e-3});
+    EXPECT_NEAR(side.gap, d, 1e-15);
+    EXPECT_NEAR(side.normal[1], -1.0, 1e-12);
+  }
+}
+
+// Central differences of g and n at points a distance d off the surface (one face each, so the
+// closest-point piece does not change within the difference step).
+void expect_derivatives(const RigidNeedle& needle, const Point3& x, const char* what) {
+  const double h = 1e-9;  // m; against distances >= 3 µm: O(h²/d²) truncation <= 1e-7 relative
+  const ObstacleProjection p = needle.project_in_needle_frame(x);
+  for (int k = 0; k < 3; ++k) {
+    Point3 plus = x, minus = x;
+    plus[k] += h;
+    minus[k] -= h;
+    const ObstacleProjection a = needle.project_in_needle_frame(plus), b = needle.project_in_needle_frame(minus);
+    EXPECT_NEAR((a.gap - b.gap) / (2 * h), p.normal[k], 1e-6) << what << " dg/dx_" << k;
+    for (int i = 0; i < 3; ++i)
+      EXPECT_NEAR((a.normal[i] - b.normal[i]) / (2 * h), p.normal_gradient[3 * i + k],
+                  1e-6 * std::max(1.0 / r, std::abs(p.normal_gradient[3 * i + k])))
+          << what << " dn_" << i << "/dx_" << k;
+  }
+}
+
+TEST(NeedleObstacle, NormalAndItsGradientAreDerivativesOfTheGap) {
+  const RigidNeedle needle(bevel_tip(), kMotion);
+  for (const auto& s : bevel_surface_points())
+    for (double d : {-3e-6, 4e-6, 5e-5}) {
+      if (std::string(s.face) == "edge" && d < 0.0) continue;
+      expect_derivatives(needle, add(s.x, s.normal, d), s.face);
+    }
+  // Outside the edge off the bisector (still in its normal wedge): the closest point slides along
+  // the curved edge, which G must include.
+  const auto edge = bevel_surface_points()[3];
+  expect_derivatives(needle, add(add(edge.x, edge.normal, 4e-5), {0.0, 0.0, 1.0}, 5e-6), "edge off-bisector");
+  // On the fillet's side of the edge (h'' of the arc enters G), along the bisector of the
+  // cylinder's and the fillet's normals, then shifted along z.
+  const BevelTip tip = bevel_tip();
+  const double theta = 2.6, x = r * std::cos(theta), z = tip.profile_top(x);
+  const Point3 fillet_normal{(x - tip.fillet_centre_x()) / tau, 0.0, (z - tip.fillet_centre_z()) / tau};
+  const Point3 bisector = unit(add({std::cos(theta), std::sin(theta), 0.0}, fillet_normal));
+  const Point3 fillet_edge{x, r * std::sin(theta), z};
+  EXPECT_NEAR(needle.project_in_needle_frame(add(fillet_edge, bisector, 3e-5)).gap, 3e-5, 1e-15);
+  expect_derivatives(needle, add(add(fillet_edge, bisector, 3e-5), {0.0, 0.0, 1.0}, 3e-6), "fillet edge");
+  const RigidNeedle rounded(rounded_tip(), kMotion);
+  expect_derivatives(rounded, {1e-4, -2e-4, shaft + 0.5e-3}, "hemisphere");
+  expect_derivatives(rounded, {1e-4, -5.5e-4, -0.1e-3}, "rounded shaft");
+}
+
+TEST(NeedleObstacle, PoseVelocityAndItsGradientMatchTheMotion) {
+  const RigidNeedle needle(bevel_tip(), kMotion);
+  const Point3 x{0.3e-3, 0.45e-3, 0.4e-3};
+  const double t = 0.03, dt = 1e-7;
+  const ObstacleProjection p = needle.project(x, t);
+  // A fixed point sees the gap shrink at the needle's normal speed there.
+  const double rate = (needle.project(x, t + dt).gap - needle.project(x, t - dt).gap) / (2 * dt);
+  EXPECT_NEAR(rate, -(p.normal[0] * p.velocity[0] + p.normal[1] * p.velocity[1] + p.normal[2] * p.velocity[2]), 1e-9);
+  // The material point now at x moves with w(x).
+  const double angle = kMotion.rotation_speed * t, c = std::cos(angle), s = std::sin(angle);
+  const Point3 X{c * x[0] + s * x[1], -s * x[0] + c * x[1], x[2] - kMotion.insertion_speed * t};
+  const Point3 ahead = needle.material_point(X, t + dt), behind = needle.material_point(X, t - dt);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(needle.material_point(X, t)[i], x[i], 1e-18);
+    EXPECT_NEAR((ahead[i] - behind[i]) / (2 * dt), p.velocity[i], 1e-12);
+  }
+  // W = ∂w/∂x.
+  const double h = 1e-7;
+  for (int k = 0; k < 3; ++k) {
+    Point3 plus = x, minus = x;
+    plus[k] += h;
+    minus[k] -= h;
+    const Point3 wp = needle.project(plus, t).velocity, wm = needle.project(minus, t).velocity;
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR((wp[i] - wm[i]) / (2 * h), p.velocity_gradient[3 * i + k], 1e-9);
+  }
+  // Rotating the point with the needle leaves its gap unchanged; past the duration the needle rests.
+  EXPECT_NEAR(needle.project(x, t).gap, needle.project_in_needle_frame(X).gap, 1e-18);
+  const ObstacleProjection after = needle.project(x, 0.2);
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(after.velocity[i], 0.0);
+  EXPECT_EQ(needle.rear_face_centre(0.2)[2], kMotion.insertion_speed * kMotion.duration);
+}
+
+}  // namespace
+}  // namespace needlefem::contact
