@@ -56,12 +56,12 @@ void print_table(const prbm::PrbmCheckResult& r) {
              "(FEM, small load: {:.5g}), lever {:.4g} mm (FEM load: {:.4g} mm)\n",
              r.youngs_modulus_pa * 1e-9, r.poisson_ratio, r.hinge_stiffness_n_m_per_rad, r.fem_stiffness_n_m_per_rad,
              r.prbm_lever_m * 1e3, r.fem_load_lever_m * 1e3);
-  fmt::print("{:>10} {:>9} {:>12} {:>9} {:>9} {:>10} {:>9} {:>13}\n", "load N", "PRBM deg", "FEM foll deg", "err %",
-             "FEM dead", "err dead %", "FEM lin", "PRBM FEM lever");
+  fmt::print("{:>10} {:>9} {:>12} {:>9} {:>9} {:>10} {:>9} {:>13} {:>8}\n", "load N", "PRBM deg", "FEM foll deg",
+             "err %", "FEM dead", "err dead %", "FEM lin", "PRBM FEM lever", "strain");
   for (const auto& row : r.rows)
-    fmt::print("{:>10.4g} {:>9.3f} {:>12.3f} {:>9.2f} {:>9.3f} {:>10.2f} {:>9.3f} {:>13.3f}\n", row.force_n, row.prbm_deg,
-               row.fem_follower_deg, row.error_percent(), row.fem_dead_deg, row.dead_error_percent(),
-               row.fem_linear_deg, row.prbm_load_lever_deg);
+    fmt::print("{:>10.4g} {:>9.3f} {:>12.3f} {:>9.2f} {:>9.3f} {:>10.2f} {:>9.3f} {:>13.3f} {:>8.4f}\n", row.force_n,
+               row.prbm_deg, row.fem_follower_deg, row.error_percent(), row.fem_dead_deg, row.dead_error_percent(),
+               row.fem_linear_deg, row.prbm_load_lever_deg, row.max_corotated_strain);
   fmt::print("PRBM within {:g} % up to {:.4g} deg (follower load), {:.4g} deg (dead load); {} tets, {} dofs, {:.1f} s\n",
              r.tolerance_percent, r.accurate_up_to_deg, r.dead_accurate_up_to_deg, r.elements, r.dofs,
              r.mesh_seconds + r.solve_seconds);

@@ -9,12 +9,11 @@
 // (3 % here; 6 % at the paper's l/d = 5) and the quadratic tets are slightly stiffer than the
 // converged solution (1-2 % at 0.07 mm), hence the one-sided band: 0 % to 6 % softer.
 //
-// (main: tests/mechanics/petsc_main.cpp, GoogleTest inside PETSc.)
-//
 // At a 20 deg turn: under a follower load the moment about the neck stays F a, so the angle stays
 // linear in F (the co-rotational FEM must not stiffen or soften by more than 1 %); under a dead load
 // the moment arm shortens to a cos(theta), so the rigid-head estimate K theta = F a cos(theta) with
 // K = F a / theta_linear holds to 2 % (the pivot is not exactly at the neck centre).
+// main(): tests/mechanics/petsc_main.cpp (GoogleTest inside PETSc).
 #include <cmath>
 #include <numbers>
 
