@@ -280,7 +280,8 @@ std::vector<KeySpec> build_schema() {
       reals("prbm_check.angles_deg", std::vector<double>{2.0, 5.0, 10.0, 15.0, 20.0, 25.0, 30.0, 40.0}, 0, 0.0, 89.0,
             "PRBM turning angles (Eq. 2.7) whose head loads the FEM solves, follower and dead", true),
       real("prbm_check.element_mm", 0.2, 0.0, 100.0, "Tip FEM element size in the shaft and head"),
-      real("prbm_check.neck_element_mm", 0.05, 0.0, 100.0, "Tip FEM element size in the neck slab"),
+      real("prbm_check.neck_element_mm", 0.05, 0.0, 100.0,
+           "Tip FEM element size in the neck and one neck diameter beyond its ends"),
       real("prbm_check.tolerance_percent", 5.0, 0.0, 100.0,
            "PRBM-vs-FEM angle error below which the PRBM counts as accurate"),
 

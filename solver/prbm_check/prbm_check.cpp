@@ -46,6 +46,8 @@ PrbmCheckResult run_prbm_check(const Case& input) {
   PrbmCheckResult result;
   result.youngs_modulus_pa = input.real("steering.neck_youngs_modulus_gpa") * 1e9;
   result.poisson_ratio = input.real("prbm_check.poisson_ratio");
+  if (!(result.poisson_ratio < 0.5))
+    throw input.error("prbm_check.poisson_ratio", "must be below 0.5 (the co-rotational law's lambda is infinite there)");
   result.tolerance_percent = input.real("prbm_check.tolerance_percent");
   result.element_mm = input.real("prbm_check.element_mm");
   result.neck_element_mm = input.real("prbm_check.neck_element_mm");
