@@ -8,8 +8,15 @@
              von Mises and the max principal stress; max principal ln V = ln l; strain rate
              D_xx = d ln l / dt = 0.2 / l (equivalent rate the same for isochoric stretching);
              reaction on x_max = nominal stress sigma / l times the undeformed area.
-  brain-tip  coarse paper-001 cube: summary keys, signs of the reactions (the needle pushes the
-             tissue along +z), global balance cavity + fixed = 0, fields in the HDF5 file.
+  brain-tip  coarse paper-001 cube, needle in frictional contact, default tolerances: summary keys
+             (needle, thresholds, contact), signs at every output time (the needle pushes the
+             tissue along +z and is pushed back: axial force on the needle < 0; friction resists
+             the +180 deg/s rotation: torque on the needle < 0), fields in the HDF5 file
+             including contact pressure (>= 0) and slip on the cavity nodes only.
+  balance    the same scene with tight IDA tolerances: at every output time the force on the
+             needle equals the sum of the reactions on the fixed faces (the tissue's equilibrium;
+             the entry face is free) within 1e-6 relative. The error is the Newton residual summed
+             over the free nodes, so it needs the tight tolerances.
   failure    an inverting block: non-zero exit, exactly one error line, summary status
              "failed", and the output times completed before the failure readable.
 """
@@ -33,6 +40,11 @@ FIELDS = ["displacement", "velocity", "cauchy_stress", "von_mises", "max_princip
           "max_over_time_log_strain", "max_over_time_strain_rate"]
 SUMMARY_MAXIMA = ["log_strain", "strain_rate_per_s", "von_mises_pa", "principal_stress_pa"]
 SOLVER_KEYS = ["wall_s", "steps", "newton_iterations", "jacobian_setups", "dofs", "peak_rss_mb"]
+CONTACT_FIELDS = ["contact_pressure", "contact_slip"]
+# summary thresholds -> (default limit, summary max key): paper 001's design limits.
+THRESHOLDS = {"log_strain": (0.19, "log_strain"), "strain_rate_per_s": (10.0, "strain_rate_per_s"),
+              "stress_pa": (120000.0, "von_mises_pa")}
+COARSE = ["--set", "tissue.core_element_mm=1.5", "--set", "tissue.outer_element_mm=3.0"]
 
 failures = []
 
@@ -106,11 +118,14 @@ def block(args):
     close(-summary["reactions"]["x_min"][0], sigma / l_end * AREA, 1e-3, "reaction on x_min balances x_max")
 
 
+def vector(row, prefix, suffix):
+    return [float(row[f"{prefix}_{c}_{suffix}"]) for c in "xyz"]
+
+
 def brain_tip(args):
     out = pathlib.Path(args.out)
-    coarse = ["--set", "tissue.core_element_mm=1.5", "--set", "tissue.outer_element_mm=3.0",
-              "--set", "motion.duration_s=0.01", "--set", "output.interval_s=0.005"]
-    result = run(args.exe, args.case, out, coarse)
+    result = run(args.exe, args.case, out,
+                 COARSE + ["--set", "motion.duration_s=0.01", "--set", "output.interval_s=0.005"])
     check(result.returncode == 0, f"run exits 0 ({result.stderr.strip()[-300:]})")
     check(result.stderr.count("run: t = ") == 3, "one progress line per output time on stderr")
     summary = json.load(open(out / "summary.json"))
@@ -118,13 +133,57 @@ def brain_tip(args):
     cavity, fixed = summary["reactions"]["cavity"], summary["reactions"]["fixed"]
     check(cavity[2] > 0, f"needle pushes the tissue along +z: cavity reaction z = {cavity[2]:.3e} N > 0")
     check(fixed[2] < 0, f"skull holds it back: fixed reaction z = {fixed[2]:.3e} N < 0")
-    size = math.sqrt(sum(c * c for c in cavity))
-    imbalance = math.sqrt(sum((a + b) ** 2 for a, b in zip(cavity, fixed)))
-    check(imbalance <= 1e-3 * size, f"global balance |cavity + fixed| = {imbalance:.2e} <= 1e-3 x {size:.3e} N")
     for key in SUMMARY_MAXIMA:
         check(summary["max"][key]["value"] > 0, f"max.{key} = {summary['max'][key]['value']:.4g} > 0")
     check(0 < summary["energy"]["max_kinetic_to_elastic_ratio"] < 0.1,
           f"kinetic/elastic energy {summary['energy']['max_kinetic_to_elastic_ratio']:.2e} small")
+
+    rows = history(out)
+    for row in rows[1:]:
+        t, force, torque = float(row["time_s"]), vector(row, "needle_force", "n"), float(row["needle_moment_z_n_m"])
+        check(force[2] < 0, f"t = {t:g} s: axial force on the needle {force[2]:.3e} N < 0 (tissue resists insertion)")
+        check(torque < 0, f"t = {t:g} s: torque on the needle {torque:.3e} N m < 0 (resists the +z rotation)")
+        check(float(row["contact_area_mm2"]) > 0, f"t = {t:g} s: contact area {row['contact_area_mm2']} mm^2 > 0")
+    needle = summary["needle"]
+    axial = [float(r["needle_force_z_n"]) for r in rows]
+    torques = [float(r["needle_moment_z_n_m"]) for r in rows]
+    close(needle["max_axial_force_n"], max(abs(f) for f in axial), 1e-8, "summary needle.max_axial_force_n = max |history|")
+    close(needle["max_torque_n_m"], max(abs(m) for m in torques), 1e-8, "summary needle.max_torque_n_m = max |history|")
+    for name, (limit, max_key) in THRESHOLDS.items():
+        entry = summary["thresholds"][name]
+        check(entry["limit"] == limit and entry["max"] == summary["max"][max_key]["value"]
+              and entry["pass"] == (entry["max"] <= limit),
+              f"thresholds.{name}: limit {entry['limit']}, max {entry['max']:.4g}, pass {entry['pass']}")
+    gap_nodes = summary["contact"]["initial_gap_nodes_mm"]
+    check(max(abs(g) for g in gap_nodes) < 1e-6, f"cavity nodes lie on the needle at t = 0: gaps {gap_nodes} mm")
+
+    with h5py.File(out / "result.h5", "r") as h5:
+        nodes = h5["/mesh/coordinates_mm"].shape[0]
+        cavity_nodes = set(h5["/mesh/surfaces/cavity"][...].ravel().tolist())
+        for name in CONTACT_FIELDS:
+            path = f"/series/node/{name}"
+            check(path in h5 and h5[path].shape[1] == nodes, f"{path} present")
+        pressure, slip = h5["/series/node/contact_pressure"][2], h5["/series/node/contact_slip"][2]
+        off_cavity = [i for i in range(nodes) if i not in cavity_nodes]
+        check(pressure.min() >= 0 and pressure.max() > 0, f"contact pressure in [0, {pressure.max():.3g}] Pa")
+        check(slip.max() > 0, f"the tissue slips on the needle: max slip {slip.max() * 1e3:.3g} mm")
+        check(not pressure[off_cavity].any() and not slip[off_cavity].any(), "contact fields are 0 off the cavity")
+
+
+def balance(args):
+    out = pathlib.Path(args.out)
+    tight = ["--set", "integration.relative_tolerance=1e-8", "--set", "integration.absolute_tolerance=1e-15"]
+    result = run(args.exe, args.case, out,
+                 COARSE + tight + ["--set", "motion.duration_s=0.004", "--set", "output.interval_s=0.001"])
+    check(result.returncode == 0, f"run exits 0 ({result.stderr.strip()[-300:]})")
+    rows = history(out)
+    check(len(rows) == 5, f"history.csv has 5 rows ({len(rows)})")
+    for row in rows[1:]:
+        t, force, reaction = float(row["time_s"]), vector(row, "needle_force", "n"), vector(row, "reaction_fixed", "n")
+        size = math.sqrt(sum(c * c for c in force))
+        error = math.sqrt(sum((a - b) ** 2 for a, b in zip(force, reaction)))
+        check(size > 0 and error <= 1e-6 * size,
+              f"t = {t:g} s: |needle force - fixed reactions| = {error:.2e} <= 1e-6 x {size:.4e} N")
 
 
 def failure(args):
@@ -147,12 +206,12 @@ def failure(args):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("scenario", choices=["block", "brain-tip", "failure"])
+    parser.add_argument("scenario", choices=["block", "brain-tip", "balance", "failure"])
     parser.add_argument("--exe", required=True)
     parser.add_argument("--case", required=True)
     parser.add_argument("--out", required=True)
     args = parser.parse_args()
-    {"block": block, "brain-tip": brain_tip, "failure": failure}[args.scenario](args)
+    {"block": block, "brain-tip": brain_tip, "balance": balance, "failure": failure}[args.scenario](args)
     if failures:
         print(f"{len(failures)} check(s) failed", file=sys.stderr)
         return 1
