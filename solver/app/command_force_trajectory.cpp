@@ -40,9 +40,11 @@ void run_force_trajectory(const CaseOptions& options) {
     throw input.error("insertion_force.energy_history",
                       "needed: history.csv of a `needlefem run` of the brain-tip scene (its elastic energy)");
   const insertion::InsertionForceParameters parameters = parameters_from_case(input);
+  insertion::EnergySamples samples;
   insertion::DeformationEnergy energy;
   try {
-    energy = insertion::fit_deformation_energy(insertion::read_energy_history(history));
+    samples = insertion::read_energy_history(history);
+    energy = insertion::fit_deformation_energy(samples);
   } catch (const std::runtime_error& e) {
     throw input.error("insertion_force.energy_history", e.what());
   }
@@ -66,6 +68,7 @@ void run_force_trajectory(const CaseOptions& options) {
   nlohmann::json json = {
       {"trajectory_file", h5.string()},
       {"energy_source", history.string()},
+      {"energy_source_contact_mode", samples.contact_mode},
       {"energy_fit", {{"coefficient_j_per_m_pow_p", energy.coefficient},
                       {"exponent_p", energy.exponent},
                       {"largest_sample_mm", energy.largest_sample_m * 1e3},

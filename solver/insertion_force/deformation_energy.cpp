@@ -29,13 +29,17 @@ std::size_t column(const std::vector<std::string>& header, const std::string& na
   return static_cast<std::size_t>(it - header.begin());
 }
 
-double run_speed_m_per_s(const std::filesystem::path& summary_file) {
+// The run's insertion speed and contact mode from the case echoed in its summary.json.
+void read_run_summary(const std::filesystem::path& summary_file, EnergySamples& samples) {
   const std::string file = summary_file.string();
   std::ifstream in(summary_file);
   if (!in) throw std::runtime_error(fmt::format("{}: cannot open (it gives the run's insertion speed)", file));
   try {
-    const nlohmann::json summary = nlohmann::json::parse(in);
-    return summary.at("case").at("motion").at("insertion_speed_mm_per_s").get<double>() * 1e-3;
+    const nlohmann::json echo = nlohmann::json::parse(in).at("case");
+    samples.insertion_speed_m_per_s = echo.at("motion").at("insertion_speed_mm_per_s").get<double>() * 1e-3;
+    const auto contact = echo.find("contact");
+    samples.contact_mode = contact != echo.end() && contact->contains("mode") ? contact->at("mode").get<std::string>()
+                                                                               : std::string("tied");
   } catch (const nlohmann::json::exception& e) {
     throw std::runtime_error(fmt::format("{}: no case.motion.insertion_speed_mm_per_s ({})", file, e.what()));
   }
@@ -53,7 +57,7 @@ EnergySamples read_energy_history(const std::filesystem::path& history_csv) {
   const std::size_t time_column = column(header, "time_s", file);
   const std::size_t energy_column = column(header, "elastic_energy_j", file);
   EnergySamples samples;
-  samples.insertion_speed_m_per_s = run_speed_m_per_s(history_csv.parent_path() / "summary.json");
+  read_run_summary(history_csv.parent_path() / "summary.json", samples);
   for (int row = 2; std::getline(in, line); ++row) {
     if (line.empty()) continue;
     const std::vector<std::string> fields = split_csv(line);

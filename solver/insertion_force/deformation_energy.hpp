@@ -10,6 +10,7 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
 #include <vector>
 
 namespace needlefem::insertion {
@@ -18,6 +19,9 @@ struct EnergySamples {
   std::vector<double> displacement_m;
   std::vector<double> energy_j;
   double insertion_speed_m_per_s = 0.0;  // of the run the samples come from
+  // The run's contact.mode ("tied": cavity moved with the needle; "frictional": contact FEM);
+  // runs from before contact existed echo none and were tied.
+  std::string contact_mode;
 };
 
 // Reads FOLDER/history.csv and FOLDER/summary.json for a history file FOLDER/history.csv. Throws

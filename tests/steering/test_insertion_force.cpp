@@ -47,6 +47,7 @@ TEST(InsertionForce, HistoryFitRecoversTheQuadraticEnergy) {
   const EnergySamples samples = read_energy_history(write_history("fit"));
   ASSERT_EQ(samples.displacement_m.size(), 11u);
   EXPECT_DOUBLE_EQ(samples.insertion_speed_m_per_s, 2e-3);
+  EXPECT_EQ(samples.contact_mode, "tied") << "a run that echoes no contact table was tied";
   EXPECT_NEAR(samples.displacement_m.back(), 0.2e-3, 1e-15);
   const DeformationEnergy fit = fit_deformation_energy(samples);
   EXPECT_NEAR(fit.exponent, 2.0, 1e-9);
