@@ -122,13 +122,13 @@ material::Material neo_hookean(double shear_modulus, double bulk_modulus) {
   return material::Material("neo-hookean", law);
 }
 
-bool solve_static(mechanics::MechanicsSystem& system, double t, Vec y, Vec ydot) {
+int solve_static(mechanics::MechanicsSystem& system, double t, Vec y, Vec ydot, int max_iterations) {
   Vec residual, correction;
   VecDuplicate(y, &residual);
   VecDuplicate(y, &correction);
   VecSet(ydot, 0.0);
-  bool converged = false;
-  for (int iteration = 0; iteration < 30 && !converged; ++iteration) {
+  int iterations = -1;
+  for (int iteration = 1; iteration <= max_iterations; ++iteration) {
     if (system.residual(t, y, ydot, residual) != DaeStatus::ok) break;
     if (system.setup_jacobian(t, y, ydot, 1.0) != DaeStatus::ok) break;
     if (system.solve_jacobian(residual, correction) != DaeStatus::ok) break;
@@ -136,11 +136,14 @@ bool solve_static(mechanics::MechanicsSystem& system, double t, Vec y, Vec ydot)
     double step = 0.0, size = 0.0;
     VecNorm(correction, NORM_2, &step);
     VecNorm(y, NORM_2, &size);
-    converged = step <= 1e-10 * size;
+    if (step <= 1e-10 * size) {
+      iterations = iteration;
+      break;
+    }
   }
   VecDestroy(&residual);
   VecDestroy(&correction);
-  return converged;
+  return iterations;
 }
 
 }  // namespace needlefem::contact::testing

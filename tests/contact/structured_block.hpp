@@ -31,8 +31,9 @@ void constrain(mechanics::DirichletConditions& conditions, const TetMesh& mesh, 
 // Neo-Hookean (C10 = shear_modulus / 2) with bulk modulus K, no Prony terms.
 material::Material neo_hookean(double shear_modulus, double bulk_modulus);
 
-// Full Newton at time t from the current y (y' held at zero): true when the correction falls
-// below 1e-10 of y within 30 iterations.
-bool solve_static(mechanics::MechanicsSystem& system, double t, Vec y, Vec ydot);
+// Full Newton at time t from the current y (y' held at zero): the number of iterations after
+// which the correction fell below 1e-10 of y, or -1 when that took more than `max_iterations`
+// or the system failed (inverted element).
+int solve_static(mechanics::MechanicsSystem& system, double t, Vec y, Vec ydot, int max_iterations = 30);
 
 }  // namespace needlefem::contact::testing
