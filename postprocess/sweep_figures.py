@@ -13,12 +13,13 @@ usage: /usr/bin/python3 postprocess/sweep_figures.py COMMAND ARGS [--png OUT.png
                                       radius and bevel angle (Fig. 5)
   strain-rate SWEEP_DIR [--grid G]    max strain rate against time, one line per speed
                                       (slow/medium/fast when there are three), with the limit (Fig. 6)
-  safety-map SWEEP_DIR [--x KEY] [--y KEY]
+  safety-map SWEEP_DIR [--grid G] [--x KEY] [--y KEY]
                                       safe/unsafe/failed/impossible over two swept keys (default: the
                                       first two that vary), one panel per value of the other swept keys
   history RUN_DIR                     time histories of one run: maxima with their limits, reactions
   all SWEEP_DIR [--out DIR] [--design-grid G] [--rate-grid G]
-                                      all of the above (history of the first completed point) as
+                                      all of the above (history of the first completed point; the
+                                      safety map of the design grid) as
                                       fig4_stress_strain.png, fig5_fillet.png, fig6_strain_rate.png,
                                       safety_map.png, history.png in DIR (default SWEEP_DIR/figures)
 --grid G keeps the points of grid G (a [[grid]] name, or "main"). Default OUT: SWEEP_DIR/<figure>.png.
@@ -30,6 +31,7 @@ import json
 import math
 import pathlib
 import sys
+import textwrap
 
 import h5py
 import matplotlib
@@ -209,13 +211,13 @@ def strain_rate(sweep, png, grid=None):
                 "Tissue strain rate against insertion and rotation speed")
 
 
-def varying_keys(sweep):
+def varying_keys(sweep, rows):
+    """Swept keys that take more than one value over the given rows."""
     out = []
     for key in sweep.swept_keys:
-        values = sweep.table[key]
-        if values.dtype.kind == "f" and len({v for v in values if not math.isnan(v)}) > 1:
-            out.append(key)
-        elif values.dtype.kind != "f" and len(set(values)) > 1:
+        values = {sweep.table[key][i] for i in rows}
+        values = {v for v in values if not (isinstance(v, float) and math.isnan(v))}
+        if len(values) > 1:
             out.append(key)
     return out
 
@@ -224,9 +226,10 @@ def short(key):
     return key.rsplit(".", 1)[-1]
 
 
-def safety_map(sweep, png, x=None, y=None):
+def safety_map(sweep, png, x=None, y=None, grid=None):
     """Every design point over two swept keys: safe, unsafe (which limits), failed, impossible."""
-    keys = varying_keys(sweep)
+    rows = sweep.indices(grid, status=None)
+    keys = varying_keys(sweep, rows)
     x = x or (keys[0] if keys else sweep.swept_keys[0])
     rest = [k for k in keys if k != x]
     y = y or (rest[0] if rest else None)
@@ -235,17 +238,17 @@ def safety_map(sweep, png, x=None, y=None):
             raise SystemExit(f"safety-map: '{key}' is not a swept key of {sweep.dir} ({', '.join(sweep.swept_keys)})")
     panel_keys = [k for k in keys if k not in (x, y)]
     t = sweep.table
-    panels = sorted({tuple(t[k][i] for k in panel_keys) for i in range(sweep.rows)})
+    panels = sorted({tuple(t[k][i] for k in panel_keys) for i in rows})
     columns = min(3, len(panels))
-    rows = math.ceil(len(panels) / columns)
-    fig, axes = plt.subplots(rows, columns, figsize=(4.6 * columns, 3.9 * rows), squeeze=False)
+    lines = math.ceil(len(panels) / columns)
+    fig, axes = plt.subplots(lines, columns, figsize=(4.6 * columns, 3.9 * lines), squeeze=False)
     pass_columns = [c for c in sweep.columns if c.startswith("pass_")]
     styles = {"safe": dict(marker="o", color="#2ca02c"), "unsafe": dict(marker="X", color="#d62728"),
               "failed": dict(marker="^", color="k"), "impossible": dict(marker="s", color="#b0b0b0"),
               "pending": dict(marker="o", color="#1f77b4", fillstyle="none")}
     seen = set()
     for ax, panel in zip(axes.flat, panels):
-        for i in range(sweep.rows):
+        for i in rows:
             if tuple(t[k][i] for k in panel_keys) != panel:
                 continue
             status = t["status"][i]
@@ -265,8 +268,9 @@ def safety_map(sweep, png, x=None, y=None):
         ax.set_ylabel(short(y) if y else "")
         if not y:
             ax.set_yticks([])
-        ax.set_title(", ".join(f"{short(k)} = {v:g}" if isinstance(v, float) else f"{short(k)} = {v}"
-                               for k, v in zip(panel_keys, panel)) or "design grid", fontsize=9)
+        title = ", ".join(f"{short(k)} = {v:g}" if isinstance(v, float) else f"{short(k)} = {v}"
+                          for k, v in zip(panel_keys, panel))
+        ax.set_title(textwrap.fill(title, 60) or (f"grid {grid}" if grid else "design grid"), fontsize=8)
         ax.margins(0.2)
         ax.grid(True, alpha=0.3)
     for ax in list(axes.flat)[len(panels):]:
@@ -330,6 +334,7 @@ def main(argv=None):
         p.add_argument("--png")
     p = commands.add_parser("safety-map")
     p.add_argument("sweep_dir")
+    p.add_argument("--grid")
     p.add_argument("--x")
     p.add_argument("--y")
     p.add_argument("--png")
@@ -351,13 +356,13 @@ def main(argv=None):
     if args.command in figures:
         figures[args.command](sweep, args.png or sweep.dir / f"{args.command}.png", args.grid)
     elif args.command == "safety-map":
-        safety_map(sweep, args.png or sweep.dir / "safety_map.png", args.x, args.y)
+        safety_map(sweep, args.png or sweep.dir / "safety_map.png", args.x, args.y, args.grid)
     else:
         out = pathlib.Path(args.out) if args.out else sweep.dir / "figures"
         stress_strain(sweep, out / "fig4_stress_strain.png", args.design_grid)
         fillet(sweep, out / "fig5_fillet.png", args.design_grid)
         strain_rate(sweep, out / "fig6_strain_rate.png", args.rate_grid)
-        safety_map(sweep, out / "safety_map.png")
+        safety_map(sweep, out / "safety_map.png", grid=args.design_grid)
         completed = sweep.indices()
         if completed:
             history(sweep.dir / sweep.table["point"][completed[0]], out / "history.png")
