@@ -184,6 +184,9 @@ std::vector<KeySpec> build_schema() {
              "Newton linear solves: 'modified' reuses the factored Newton matrix; 'krylov' runs GMRES on the "
              "current Jacobian (difference quotients) preconditioned by the rarely refreshed factorisation"),
       integer("integration.krylov_dimension", 20, 1, 500, "GMRES basis size of integration.newton = krylov"),
+      real("integration.newton_convergence_coefficient", 0.01, 0.0, 1.0,
+           "Newton stops when its error estimate is below this fraction of the error-test tolerance "
+           "(IDA's epcon, its default 0.33; nearly incompressible tissue needs a tighter value)"),
       real("integration.newton_matrix_cj_change", 0.9, 0.0, 0.99,
            "Refactor the Newton matrix (or preconditioner) when IDA's cj = alpha/h changed by more than this "
            "fraction (IDA's own default 0.25 suits 'modified' on stiff ODEs; the tissue matrix barely depends on cj)",

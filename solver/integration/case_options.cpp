@@ -11,6 +11,7 @@ IdaOptions ida_options_from_case(const Case& c) {
   options.max_step = c.real("integration.max_step_s");
   options.max_newton_iterations = static_cast<int>(c.integer("integration.max_newton_iterations"));
   options.newton = c.text("integration.newton") == "krylov" ? NewtonMethod::krylov : NewtonMethod::modified;
+  options.newton_convergence_coefficient = c.real("integration.newton_convergence_coefficient");
   options.krylov_dimension = static_cast<int>(c.integer("integration.krylov_dimension"));
   options.newton_matrix_cj_change = c.real("integration.newton_matrix_cj_change");
   options.suppress_algebraic_error = c.flag("integration.suppress_algebraic_error");

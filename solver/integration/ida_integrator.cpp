@@ -18,8 +18,6 @@ namespace needlefem {
 
 namespace {
 
-// IDA's Newton convergence coefficient (its default, epcon = 0.33).
-constexpr double kNewtonConvergenceCoefficient = 0.33;
 
 Vec petsc_vector(N_Vector v) { return N_VGetVector_Petsc(v); }
 
@@ -188,10 +186,8 @@ IdaIntegrator::IdaIntegrator(DaeSystem& system, const IdaOptions& options, doubl
   ida_check(IDASetMaxNumSteps(m.ida, options.max_steps_per_advance), "IDASetMaxNumSteps");
   ida_check(IDASetSuppressAlg(m.ida, options.suppress_algebraic_error ? SUNTRUE : SUNFALSE), "IDASetSuppressAlg");
   double initial_step = options.initial_step, max_step = options.max_step;
-  if (options.fixed_step) {
-    initial_step = max_step = *options.fixed_step;
-    ida_check(IDASetNonlinConvCoef(m.ida, kNewtonConvergenceCoefficient / scale), "IDASetNonlinConvCoef");
-  }
+  if (options.fixed_step) initial_step = max_step = *options.fixed_step;
+  ida_check(IDASetNonlinConvCoef(m.ida, options.newton_convergence_coefficient / scale), "IDASetNonlinConvCoef");
   ida_check(IDASetInitStep(m.ida, initial_step), "IDASetInitStep");
   ida_check(IDASetMaxStep(m.ida, max_step), "IDASetMaxStep");
 }
