@@ -46,7 +46,8 @@ struct IdaOptions {
   // tolerance (IDA's epcon, default 0.33). Near-incompressible tissue amplifies a displacement
   // error δu into a pressure error ~ K δu / h, so the Newton-Krylov iteration, which stops as
   // soon as the test passes, needs a tighter value than IDA's default (measured on a uniaxial
-  // block, K/μ ~ 1e4: 0.33 gives a stress error of 6e-3, 0.01 below 1e-4).
+  // block, K/μ ~ 1e4: 0.33 gives a stress error of 6e-3, 0.01 below 1e-4). The penalty contact's
+  // kinks stall Newton at such tight values, hence IDA's default stays the default.
   double newton_convergence_coefficient = 0.33;
   int krylov_dimension = 20;       // GMRES basis size (krylov)
   // IDA refreshes the Newton matrix when cj = alpha/h has changed by more than this fraction

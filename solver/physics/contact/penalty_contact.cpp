@@ -58,6 +58,8 @@ ContactParameters contact_parameters_from_case(const Case& input, double referen
   p.penalty_factor = input.real("contact.penalty_factor");
   p.slip_velocity_regularisation = input.real("contact.slip_velocity_regularisation_mm_per_s") * kMetresPerMm;
   p.reference_modulus = reference_modulus;
+  p.friction_tangent =
+      input.text("contact.friction_tangent") == "consistent" ? FrictionTangent::consistent : FrictionTangent::secant;
   return p;
 }
 
