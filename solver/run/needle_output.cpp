@@ -77,6 +77,9 @@ nlohmann::json NeedleOutput::summary() const {
                   {"initial_gap_centroids_mm", range(initial_gap_.centroids)},
                   {"initial_gap_note", "[min, max] gap of the undeformed cavity to the needle at t = 0, at the cavity "
                                        "nodes and at the face centroids"},
+                  {"edge_radius_mm", contact_.needle().edge_radius() * kMmPerM},
+                  {"edge_note", "the needle's bevel and fillet edges are rounded with this radius (needle_obstacle.hpp): "
+                                "cavity nodes on those edges start up to about this far from the needle"},
                   {"cavity_faces", contact_.contact().face_count()}};
   return s;
 }

@@ -1,6 +1,7 @@
 // The rigid needle obstacle (physics/contact/needle_obstacle.hpp) against independent
 // references: gaps of points placed at known distances from each face of the tip (cylinder,
-// bevel plane, fillet, bevel-cylinder edge, hemisphere), n = ∂g/∂x and G = ∂n/∂x by central
+// bevel plane, fillet, the rounded bevel-cylinder edge, hemisphere), a normal continuous across
+// the edge, n = ∂g/∂x and G = ∂n/∂x by central
 // differences, the rigid velocity field against the time derivative of the pose
 // (∂g/∂t = -n·w at a fixed point, and w = d/dt of the material point), and W = ∂w/∂x.
 #include <gtest/gtest.h>
@@ -33,43 +34,64 @@ struct SurfacePoint {
   const char* face;
   Point3 x, normal;
 };
-std::vector<SurfacePoint> bevel_surface_points() {
-  const BevelTip tip = bevel_tip();
+// The tip with every face moved inwards by the edge radius rho: its edges are the centres of the
+// needle's rounded edges.
+BevelTip core(double rho) { return {r - rho, alpha, tau - rho, shaft - rho * std::tan(alpha / 2)}; }
+
+std::vector<SurfacePoint> bevel_surface_points(double rho) {
+  const BevelTip tip = bevel_tip(), inner = core(rho);
   const double phi = 2.0;  // rad, on the shaft cylinder
   const double xb = 0.2 * r, yb = 0.3 * r;  // on the bevel plane
   const double psi = 0.6 * kPi;             // on the fillet arc, angle from +x in the x-z plane
   const double xf = tip.fillet_centre_x() + tau * std::cos(psi), zf = tip.fillet_centre_z() + tau * std::sin(psi);
   const double theta = 0.4;  // on the heel side of the bevel-cylinder edge
-  const Point3 edge{r * std::cos(theta), r * std::sin(theta), tip.profile_top(r * std::cos(theta))};
+  const double re = r - rho, xe = re * std::cos(theta);
+  const Point3 edge_centre{xe, re * std::sin(theta), inner.profile_top(xe)};
   const Point3 bevel_normal{std::cos(alpha), 0.0, std::sin(alpha)};
   const Point3 cylinder_normal{std::cos(theta), std::sin(theta), 0.0};
   return {{"cylinder", {r * std::cos(phi), r * std::sin(phi), 0.5 * shaft}, {std::cos(phi), std::sin(phi), 0.0}},
           {"bevel", {xb, yb, tip.profile_top(xb)}, bevel_normal},
           {"fillet", {xf, 0.1 * r, zf}, {std::cos(psi), 0.0, std::sin(psi)}},
-          // Outside the edge along the bisector of its two face normals the closest point is the
-          // edge point itself.
-          {"edge", edge, unit(add(bevel_normal, cylinder_normal))}};
+          // On the rounded edge: rho from the core's edge along the bisector of the face normals.
+          {"edge", add(edge_centre, unit(add(bevel_normal, cylinder_normal)), rho),
+           unit(add(bevel_normal, cylinder_normal))}};
 }
 
 TEST(NeedleObstacle, GapOfPointsAtKnownDistancesFromEachFace) {
   const RigidNeedle needle(bevel_tip(), kMotion);
-  for (const auto& s : bevel_surface_points())
+  EXPECT_DOUBLE_EQ(needle.edge_radius(), r / 50);
+  for (const auto& s : bevel_surface_points(needle.edge_radius()))
     for (double d : {-2e-6, 0.0, 1e-6, 2e-5}) {
-      // At the edge itself the normal is any in the cone of its faces; inside, the nearer face wins.
-      if (std::string(s.face) == "edge" && d <= 0.0) continue;
       const ObstacleProjection p = needle.project_in_needle_frame(add(s.x, s.normal, d));
       EXPECT_NEAR(p.gap, d, 1e-15) << s.face << " d = " << d;
       for (int i = 0; i < 3; ++i) EXPECT_NEAR(p.normal[i], s.normal[i], 1e-9) << s.face << " d = " << d;
     }
-  // Inside near the edge: minus the distance to the nearer face (bevel plane or cylinder).
-  const auto edge = bevel_surface_points()[3];
-  const Point3 inside = add(edge.x, edge.normal, -1e-6);
-  const BevelTip tip = bevel_tip();
+  // Deeper than the edge radius: minus the distance to the nearer face (bevel plane or cylinder).
+  const auto edge = bevel_surface_points(needle.edge_radius())[3];
+  const Point3 inside = add(edge.x, edge.normal, -1.5 * needle.edge_radius());
   const double to_bevel = (inside[0] - r) * std::cos(alpha) + (inside[2] - shaft) * std::sin(alpha);
   const double to_cylinder = std::hypot(inside[0], inside[1]) - r;
-  EXPECT_NEAR(needle.project_in_needle_frame(inside).gap, std::max(to_bevel, to_cylinder), 1e-18);
+  EXPECT_NEAR(needle.project_in_needle_frame(inside).gap, std::max(to_bevel, to_cylinder), 1e-15);
   EXPECT_LT(std::max(to_bevel, to_cylinder), 0.0);
-  EXPECT_NEAR(tip.profile_top(r), shaft, 1e-18);  // the bevel plane passes through (r, ., shaft)
+  EXPECT_NEAR(bevel_tip().profile_top(r), shaft, 1e-18);  // the bevel plane passes through (r, ., shaft)
+}
+
+// Across the edge's bisector, at a penetration shallower than the edge radius, the normal turns
+// smoothly from one face's to the other's (a sharp edge would switch it in one jump).
+TEST(NeedleObstacle, NormalIsContinuousAcrossTheEdge) {
+  const RigidNeedle needle(bevel_tip(), kMotion);
+  const double rho = needle.edge_radius();
+  const auto edge = bevel_surface_points(rho)[3];
+  const Point3 bevel_normal{std::cos(alpha), 0.0, std::sin(alpha)}, cylinder_normal{std::cos(0.4), std::sin(0.4), 0.0};
+  const Point3 across = unit(add(bevel_normal, cylinder_normal, -1.0));
+  const Point3 centre = add(edge.x, edge.normal, -0.5 * rho);  // half the edge radius deep
+  Point3 previous = needle.project_in_needle_frame(add(centre, across, -0.2 * rho)).normal;
+  for (int k = -19; k <= 20; ++k) {
+    const Point3 n = needle.project_in_needle_frame(add(centre, across, 0.01 * k * rho)).normal;
+    const double turn = std::acos(std::min(1.0, n[0] * previous[0] + n[1] * previous[1] + n[2] * previous[2]));
+    EXPECT_LT(turn, 0.05) << "step " << k;  // ~0.02 rad per step; a sharp edge jumps by 0.52 rad
+    previous = n;
+  }
 }
 
 TEST(NeedleObstacle, RoundedTipIsCapsule) {
@@ -105,23 +127,21 @@ void expect_derivatives(const RigidNeedle& needle, const Point3& x, const char* 
 
 TEST(NeedleObstacle, NormalAndItsGradientAreDerivativesOfTheGap) {
   const RigidNeedle needle(bevel_tip(), kMotion);
-  for (const auto& s : bevel_surface_points())
-    for (double d : {-3e-6, 4e-6, 5e-5}) {
-      if (std::string(s.face) == "edge" && d < 0.0) continue;
-      expect_derivatives(needle, add(s.x, s.normal, d), s.face);
-    }
+  for (const auto& s : bevel_surface_points(needle.edge_radius()))
+    for (double d : {-3e-6, 4e-6, 5e-5}) expect_derivatives(needle, add(s.x, s.normal, d), s.face);
   // Outside the edge off the bisector (still in its normal wedge): the closest point slides along
   // the curved edge, which G must include.
-  const auto edge = bevel_surface_points()[3];
+  const auto edge = bevel_surface_points(needle.edge_radius())[3];
   expect_derivatives(needle, add(add(edge.x, edge.normal, 4e-5), {0.0, 0.0, 1.0}, 5e-6), "edge off-bisector");
   // On the fillet's side of the edge (h'' of the arc enters G), along the bisector of the
   // cylinder's and the fillet's normals, then shifted along z.
-  const BevelTip tip = bevel_tip();
-  const double theta = 2.6, x = r * std::cos(theta), z = tip.profile_top(x);
-  const Point3 fillet_normal{(x - tip.fillet_centre_x()) / tau, 0.0, (z - tip.fillet_centre_z()) / tau};
+  const double rho = needle.edge_radius();
+  const BevelTip inner = core(rho);
+  const double theta = 2.6, x = (r - rho) * std::cos(theta), z = inner.profile_top(x);
+  const Point3 fillet_normal{(x - inner.fillet_centre_x()) / (tau - rho), 0.0, (z - inner.fillet_centre_z()) / (tau - rho)};
   const Point3 bisector = unit(add({std::cos(theta), std::sin(theta), 0.0}, fillet_normal));
-  const Point3 fillet_edge{x, r * std::sin(theta), z};
-  EXPECT_NEAR(needle.project_in_needle_frame(add(fillet_edge, bisector, 3e-5)).gap, 3e-5, 1e-15);
+  const Point3 fillet_edge{x, (r - rho) * std::sin(theta), z};
+  EXPECT_NEAR(needle.project_in_needle_frame(add(fillet_edge, bisector, 3e-5)).gap, 3e-5 - rho, 1e-15);
   expect_derivatives(needle, add(add(fillet_edge, bisector, 3e-5), {0.0, 0.0, 1.0}, 3e-6), "fillet edge");
   const RigidNeedle rounded(rounded_tip(), kMotion);
   expect_derivatives(rounded, {1e-4, -2e-4, shaft + 0.5e-3}, "hemisphere");

@@ -19,6 +19,8 @@ constexpr double kPi = std::numbers::pi;
 constexpr int kEdgeSamples = 64;
 constexpr int kGoldenIterations = 64;  // bracket 2 (2π/64) 0.618^64 ≈ 1e-14 rad
 constexpr int kPolishIterations = 3;
+// Edge radius of the bevel tip's bevel-cylinder and fillet-cylinder edges, per needle radius.
+constexpr double kEdgeRadiusPerRadius = 0.02;
 // Edge parameters this close to ±π are the kink where the two edge branches meet.
 constexpr double kKinkTolerance = 1e-6;
 // Relative tolerance (of r) for "the projection onto one surface lies in the other set".
@@ -83,12 +85,19 @@ NeedleMotion needle_motion_from_case(const Case& input) {
           input.real("motion.rotation_speed_deg_per_s") * kPi / 180.0, input.real("motion.duration_s")};
 }
 
-RigidNeedle::RigidNeedle(const BevelTip& tip, const NeedleMotion& motion) : tip_(tip), motion_(motion) {
+RigidNeedle::RigidNeedle(const BevelTip& tip, const NeedleMotion& motion)
+    : tip_(tip),
+      motion_(motion),
+      edge_radius_(tip.rounded() ? 0.0 : std::min(tip.fillet, kEdgeRadiusPerRadius * tip.radius)) {
   if (!(tip.radius > 0.0) || !(tip.shaft >= 0.0) || !(tip.fillet >= 0.0) ||
       (!tip.rounded() && !(tip.bevel_rad > 0.0 && tip.bevel_rad <= kPi / 2)))
     throw std::invalid_argument("RigidNeedle: needs radius > 0, shaft >= 0, fillet >= 0, bevel in (0, 90] deg");
   const auto violations = tip.violations();
   if (!violations.empty()) throw std::invalid_argument("RigidNeedle: " + violations.front().message);
+  // Every face moved inwards by the edge radius ρ: radius and fillet shrink by ρ, the bevel line
+  // moves by ρ along its normal (heel lower by ρ tan(α/2)); the fillet centre stays put.
+  core_ = {tip.radius - edge_radius_, tip.bevel_rad, tip.fillet - edge_radius_,
+           tip.shaft - edge_radius_ * std::tan(0.5 * tip.bevel_rad)};
 }
 
 ObstacleProjection RigidNeedle::project_rounded(const Point3& xi) const {
@@ -102,7 +111,7 @@ ObstacleProjection RigidNeedle::project_rounded(const Point3& xi) const {
 }
 
 ObstacleProjection RigidNeedle::project_bevel(const Point3& xi) const {
-  const double r = tip_.radius;
+  const double r = core_.radius;
   // A: the cylinder.
   const double rho = std::hypot(xi[0], xi[1]);
   Candidate cylinder{rho - r, {1.0, 0.0, 0.0}, {}};
@@ -113,7 +122,7 @@ ObstacleProjection RigidNeedle::project_bevel(const Point3& xi) const {
     cylinder.gradient = normal_gradient(cylinder.normal, rho, axis);
   }
   // B: the extruded profile.
-  const ProfileDistance pd = profile_distance(tip_, xi[0], xi[2]);
+  const ProfileDistance pd = profile_distance(core_, xi[0], xi[2]);
   Candidate profile{pd.sd, {pd.nx, 0.0, pd.nz}, {}};
   if (pd.arc_distance > 0.0) {
     Matrix3 across{};
@@ -126,7 +135,7 @@ ObstacleProjection RigidNeedle::project_bevel(const Point3& xi) const {
     return from(cylinder.gap >= profile.gap ? cylinder : profile);
 
   const Candidate* best = nullptr;
-  if (cylinder.gap > 0.0 && profile_distance(tip_, r * xi[0] / rho, xi[2]).sd <= tolerance) best = &cylinder;
+  if (cylinder.gap > 0.0 && profile_distance(core_, r * xi[0] / rho, xi[2]).sd <= tolerance) best = &cylinder;
   if (profile.gap > 0.0) {
     const double px = xi[0] - profile.gap * profile.normal[0];
     if (std::hypot(px, xi[1]) <= r + tolerance && (!best || profile.gap > best->gap)) best = &profile;
@@ -136,8 +145,8 @@ ObstacleProjection RigidNeedle::project_bevel(const Point3& xi) const {
 }
 
 ObstacleProjection RigidNeedle::project_on_edge(const Point3& xi) const {
-  const double r = tip_.radius, tau = tip_.fillet, xc = tip_.fillet_centre_x(), xt = tip_.fillet_tangent_x();
-  const double slope = -1.0 / std::tan(tip_.bevel_rad);
+  const double r = core_.radius, tau = core_.fillet, xc = core_.fillet_centre_x(), xt = core_.fillet_tangent_x();
+  const double slope = -1.0 / std::tan(core_.bevel_rad);
   // c(θ), c'(θ), c''(θ) of c(θ) = (r cos θ, r sin θ, h(r cos θ)), h' and h'' of the bevel line or the arc.
   struct CurvePoint {
     Point3 c, c1, c2;
@@ -150,7 +159,7 @@ ObstacleProjection RigidNeedle::project_on_edge(const Point3& xi) const {
       h1 = -u / root;
       h2 = -tau * tau / (root * root * root);
     }
-    return CurvePoint{{x, r * s, tip_.profile_top(x)}, {-r * s, r * co, -h1 * r * s},
+    return CurvePoint{{x, r * s, core_.profile_top(x)}, {-r * s, r * co, -h1 * r * s},
                       {-r * co, -r * s, h2 * r * r * s * s - h1 * r * co}};
   };
   auto distance2 = [&](double theta) {
@@ -200,7 +209,10 @@ ObstacleProjection RigidNeedle::project_on_edge(const Point3& xi) const {
 }
 
 ObstacleProjection RigidNeedle::project_in_needle_frame(const Point3& xi) const {
-  return tip_.rounded() ? project_rounded(xi) : project_bevel(xi);
+  if (tip_.rounded()) return project_rounded(xi);
+  ObstacleProjection p = project_bevel(xi);  // against the core
+  p.gap -= edge_radius_;
+  return p;
 }
 
 Point3 RigidNeedle::rear_face_centre(double t) const {
