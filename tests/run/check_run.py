@@ -176,8 +176,12 @@ def brain_tip(args):
 def balance(args):
     out = pathlib.Path(args.out)
     tight = ["--set", "integration.relative_tolerance=1e-8", "--set", "integration.absolute_tolerance=1e-15"]
+    # The balance holds for any friction law; at the default slip regularisation (0.01 mm/s) these
+    # tight runs are fragile: three runs on meshes differing by 1e-15 mm took 102 and 162 steps
+    # and one failed, while at 0.1 mm/s all three took 66-67 steps.
+    smooth_friction = ["--set", "contact.slip_velocity_regularisation_mm_per_s=0.1"]
     result = run(args.exe, args.case, out,
-                 COARSE + tight + ["--set", "motion.duration_s=0.004", "--set", "output.interval_s=0.001"])
+                 COARSE + tight + smooth_friction + ["--set", "motion.duration_s=0.004", "--set", "output.interval_s=0.001"])
     check(result.returncode == 0, f"run exits 0 ({result.stderr.strip()[-300:]})")
     rows = history(out)
     check(len(rows) == 5, f"history.csv has 5 rows ({len(rows)})")
