@@ -8,7 +8,10 @@ Quantities: the four maxima a design study reads from summary.json: max principa
 max principal strain rate, max von Mises stress, max needle axial force. Error of a method =
 |q - q_ref| / |q_ref| against the reference run (0.4 mm core, the paper's mesh, TET10 mixed,
 default tolerances; the tolerance family shows what tighter ones do); the chart shows the
-largest of the four. A finer reference did not fit the study's ~30 CPU-minute budget: the
+largest of the error in log strain, von Mises and needle force: the max strain rate has its
+own panel because it is dominated by spikes of the rate at single output times (IDA's ydot
+after step failures: 99.5 1/s at 15 ms on the 1.0 mm mesh where the neighbouring outputs give
+3.7), which no method controls. A finer reference did not fit the study's ~30 CPU-minute budget: the
 0.4 mm run takes ~4 CPU-minutes for these 0.02 s, a 0.25 mm run (4x the DOF) several times
 more. The tolerance family also reports its error against the tightest tolerance that
 completed on its own mesh (the time-integration error alone).
@@ -23,8 +26,8 @@ Method families (one varied setting each, the others at the defaults):
                (scene.mesh_file): gmsh's meshes differ at round-off from run to run (same
                node and tet counts), which moves the maxima by ~0.2 % at 1.0 mm, more than
                the time-integration error of interest here
-  newton       integration.newton_convergence_coefficient 0.33 (IDA's own) / 0.1 / 0.03 against
-               the default 0.01, at core 0.5 on the same mesh (a looser Newton stop)
+  newton       integration.newton_convergence_coefficient 0.1 / 0.03 / 0.01 (a tighter Newton
+               stop than the default, IDA's 0.33), at core 0.5 on the same mesh
   corotational material.model = corotational-linear (its defaults: E = 3050 Pa, nu = 0.45,
                elastic; TET10 displacement element, the mixed one needs a volumetric split),
                core 1.0 / 0.7 / 0.5: the error includes the model's difference
@@ -48,7 +51,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
-from bench_runs import ROOT, binary_identity, point_name, run_case, study_arguments
+from bench_runs import ROOT, binary_identity, key_default, point_name, run_case, study_arguments
 
 args = study_arguments(__doc__, "accuracy_vs_speed", timeout_s=900.0)
 
@@ -60,6 +63,7 @@ QUANTITIES = {  # column -> (label, how to read it from a run record)
     "von_mises": ("max von Mises", lambda r: r["max"]["von_mises_pa"]),
     "axial_force": ("max needle axial force", lambda r: r["needle"]["max_axial_force_n"]),
 }
+SMOOTH = ("log_strain", "von_mises", "axial_force")   # error_max; the strain rate is spike-dominated
 
 
 def tolerances(rtol):
@@ -67,8 +71,10 @@ def tolerances(rtol):
             "integration.viscous_stress_absolute_tolerance_pa": float(f"{rtol * 1e3:g}")}
 
 
-DEFAULT_RTOL = 1e-4     # integration.relative_tolerance default
-METHOD_TIMEOUT_S = 300  # a method slower than ~8x the 0.4 mm run is off the chart; only the reference gets --timeout
+DEFAULT_RTOL = key_default(args.exe, "integration.relative_tolerance")
+# A method run is killed after this long (only the reference gets --timeout): 3.5x the default
+# 0.5 mm run, where the 0.4 mm mesh is both faster and more accurate; it bounds the study's cost.
+METHOD_TIMEOUT_S = 150
 MESH_FILE = "scene.mesh_file"
 SAME_MESH = args.out / "runs" / "core_element_mm=0.5" / "mesh.msh"   # written by the mesh family's 0.5 mm run
 REFERENCE = {CORE: 0.4}
@@ -81,7 +87,7 @@ METHODS = (  # (family, label, overrides)
        for rtol in (1e-2, 1e-3, 1e-5, 1e-6)]
     + [("newton", f"Newton coefficient {coefficient:g}, 0.5 mm",
         {CORE: 0.5, MESH_FILE: str(SAME_MESH), "integration.newton_convergence_coefficient": coefficient})
-       for coefficient in (0.33, 0.1, 0.03)]
+       for coefficient in (0.1, 0.03, 0.01)]
     + [("corotational", f"co-rotational {h} mm", {CORE: h, "material.model": "corotational-linear",
                                                    "element.formulation": "displacement"})
        for h in (1.0, 0.7, 0.5)]
@@ -147,7 +153,7 @@ for family, label, overrides, out_dir, record in records:
         value = read(record) if record["status"] == "completed" else None
         row[name] = value
         row[f"error_{name}"] = None if value is None else abs(value - ref_values[name]) / abs(ref_values[name])
-    errors = [row[f"error_{n}"] for n in QUANTITIES]
+    errors = [row[f"error_{n}"] for n in SMOOTH]
     row["error_max"] = None if None in errors else max(errors)
     if record["status"] != "completed":
         row["error"] = record.get("error")
@@ -159,12 +165,13 @@ same_mesh = [r for r in rows if r["status"] == "completed" and
              (r["family"] in ("tolerance", "newton") or r["method"] == "TET10 mixed 0.5 mm")]
 tightest = min((r for r in same_mesh if r["family"] != "newton"), key=lambda r: r["relative_tolerance"])
 for row in same_mesh:
-    row["error_max_vs_tightest_tolerance_same_mesh"] = max(abs(row[n] - tightest[n]) / abs(tightest[n]) for n in QUANTITIES)
+    row["error_max_vs_tightest_tolerance_same_mesh"] = max(abs(row[n] - tightest[n]) / abs(tightest[n]) for n in SMOOTH)
 
 report = {"benchmark": "accuracy versus speed, brain-tip scene with frictional needle contact",
           "case": str(args.case.relative_to(ROOT)), "binary": binary_identity(args.exe),
           "common_overrides": COMMON, "reference": REFERENCE,
-          "error_definition": "|q - q_ref| / |q_ref| per maximum; error_max = the largest of the four",
+          "error_definition": "|q - q_ref| / |q_ref| per maximum; error_max = the largest over " + ", ".join(SMOOTH)
+                              + " (the strain rate is spike-dominated, see error_strain_rate)",
           "time_note": "cpu_s: user+system CPU time of the single-threaded run process (its wall time on an idle "
                        "core); wall_s: the run's own wall time on the shared, loaded machine",
           "reference_values": ref_values, "reference_note": reference_note,
@@ -183,9 +190,10 @@ STYLE = {"mesh": ("o", "tab:blue"), "TET4": ("s", "tab:orange"), "displacement":
          "tolerance": ("D", "tab:green"), "newton": ("P", "tab:olive"), "corotational": ("v", "tab:purple")}
 figure = plt.figure(figsize=(12, 5.5))
 grid = figure.add_gridspec(2, 4)
-panels = [(figure.add_subplot(grid[:, :2]), "error_max", "largest of the four maxima")]
+panels = [(figure.add_subplot(grid[:, :2]), "error_max", "largest error of max log strain, von Mises, needle force")]
 for index, name in enumerate(QUANTITIES):
-    panels.append((figure.add_subplot(grid[index // 2, 2 + index % 2]), f"error_{name}", QUANTITIES[name][0]))
+    panels.append((figure.add_subplot(grid[index // 2, 2 + index % 2]), f"error_{name}",
+                   QUANTITIES[name][0] + ("" if name in SMOOTH else " (spikes)")))
 for axis, column, title in panels:
     for family, (marker, colour) in STYLE.items():
         points = [(r["cpu_s"], r[column], r["tag"]) for r in rows if r["family"] == family and r[column]]

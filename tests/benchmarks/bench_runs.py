@@ -110,6 +110,12 @@ def binary_identity(exe):
             "checkout": describe.stdout.strip()}
 
 
+def key_default(exe, key):
+    """A case key's default as `needlefem keys KEY` prints it ("KEY (real, ..., default 0.01)")."""
+    listing = subprocess.run([str(exe), "keys", key], capture_output=True, text=True, check=True).stdout
+    return float(listing.split("\n")[0].rsplit("default ", 1)[1].rstrip(")"))
+
+
 def point_name(overrides):
     """A directory name from override values: 'core_element_mm=0.5__order=2'."""
     return "__".join(f"{key.split('.')[-1]}={value}" for key, value in overrides.items())
