@@ -196,7 +196,8 @@ std::vector<KeySpec> build_schema() {
            "Leave algebraic unknowns (displacements, pressures) out of the local error test"),
       real("integration.fixed_step_s", std::monostate{}, 0.0, 1e6,
            "Stability studies: steps of exactly this size with the error test switched off "
-           "(Newton still converges to the tolerances); absent = adaptive steps"),
+           "(Newton still converges to the tolerances; needs integration.newton = \"modified\"); absent = "
+           "adaptive steps"),
       choice("integration.linear_solver", "mumps", {"mumps", "gmres-gamg", "gmres-asm"},
              "Newton-matrix solver: direct LU (MUMPS), or GMRES with AMG or additive Schwarz/ILU; "
              "override details after `--` with -nf_ksp_* / -nf_pc_* options"),

@@ -16,6 +16,8 @@ IdaOptions ida_options_from_case(const Case& c) {
   options.newton_matrix_cj_change = c.real("integration.newton_matrix_cj_change");
   options.suppress_algebraic_error = c.flag("integration.suppress_algebraic_error");
   options.fixed_step = c.maybe_real("integration.fixed_step_s");
+  if (options.fixed_step && options.newton == NewtonMethod::krylov)
+    throw c.error("integration.fixed_step_s", "fixed steps need integration.newton = \"modified\"");
   return options;
 }
 

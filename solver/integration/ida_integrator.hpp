@@ -66,7 +66,8 @@ struct IdaOptions {
   // max step), while IDA's Newton convergence coefficient is divided by S, so Newton still
   // converges to the requested rtol/atol. A Newton failure or a recoverable system failure may
   // still cut a step; the counters show it. Output times that are not multiples of the step
-  // shorten the step that lands on them.
+  // shorten the step that lands on them. Requires newton = modified (the constructor throws
+  // otherwise).
   std::optional<double> fixed_step;
 };
 

@@ -23,7 +23,7 @@ TEST(IntegrationCaseOptions, DefaultsAreIdaDefaultsAndMumps) {
 TEST(IntegrationCaseOptions, GivenKeysAndOverridesAreUsed) {
   const Case c = Case::parse(
       "[integration]\nrelative_tolerance = 1e-6\nmax_order = 2\nfixed_step_s = 0.005\n"
-      "linear_solver = \"gmres-gamg\"\nsuppress_algebraic_error = true\n",
+      "linear_solver = \"gmres-gamg\"\nsuppress_algebraic_error = true\nnewton = \"modified\"\n",
       "inline", {"integration.max_newton_iterations=7"});
   const IdaOptions ida = ida_options_from_case(c);
   EXPECT_DOUBLE_EQ(ida.relative_tolerance, 1e-6);
@@ -33,7 +33,10 @@ TEST(IntegrationCaseOptions, GivenKeysAndOverridesAreUsed) {
   EXPECT_TRUE(ida.suppress_algebraic_error);
   EXPECT_EQ(ida.max_newton_iterations, 7);
   EXPECT_EQ(ksp_options_from_case(c).method, "gmres-gamg");
+  EXPECT_EQ(ida.newton, NewtonMethod::modified);
   EXPECT_THROW(Case::parse("[integration]\nlinear_solver = \"cholmod\"\n", "inline"), CaseError);
+  // Fixed steps with the default Newton-Krylov: one error naming the key.
+  EXPECT_THROW(ida_options_from_case(Case::parse("[integration]\nfixed_step_s = 0.005\n", "inline")), CaseError);
 }
 
 }  // namespace

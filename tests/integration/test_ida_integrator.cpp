@@ -372,11 +372,13 @@ TEST(IdaIntegrator, FatalFailureThrowsNamingTheTime) {
 
 TEST(IdaIntegrator, RejectsInvalidOptions) {
   MaxwellSolidSystem system;
-  IdaOptions order_six, negative_step, zero_rtol;
+  IdaOptions order_six, negative_step, zero_rtol, krylov_fixed_step;
   order_six.max_order = 6;
   negative_step.fixed_step = -0.1;
   zero_rtol.relative_tolerance = 0.0;
-  for (const auto& options : {order_six, negative_step, zero_rtol})
+  krylov_fixed_step.fixed_step = 0.01;
+  krylov_fixed_step.newton = NewtonMethod::krylov;
+  for (const auto& options : {order_six, negative_step, zero_rtol, krylov_fixed_step})
     EXPECT_THROW(IdaIntegrator(system, options, 0.0, PETSC_COMM_SELF), std::invalid_argument);
 }
 
