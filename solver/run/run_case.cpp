@@ -282,9 +282,9 @@ nlohmann::json run_case(const Case& c, const RunOptions& options) {
       }
       file.append_time(t, values);
 
-      record.reactions.clear();
-      for (const auto& s : record.surfaces) record.reactions.push_back(system->reaction_force(integrator.state(), s));
-      record.elastic_energy_j = system->elastic_energy(integrator.state());
+      auto resultants = system->resultants(integrator.state(), record.surfaces);
+      record.reactions = std::move(resultants.reactions);
+      record.elastic_energy_j = resultants.elastic_energy;
       if (record.elastic_energy_j > 0.0)
         record.max_kinetic_to_elastic = std::max(record.max_kinetic_to_elastic, f.kinetic_energy / record.elastic_energy_j);
       record.counters = integrator.counters();

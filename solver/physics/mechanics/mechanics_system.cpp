@@ -272,30 +272,31 @@ DaeStatus MechanicsSystem::solve_jacobian(Vec b, Vec x) {
   });
 }
 
-Point3 MechanicsSystem::reaction_force(Vec y, const std::string& surface) const {
-  const auto faces = mesh_.surface_faces.find(surface);
-  if (faces == mesh_.surface_faces.end()) throw std::runtime_error("the mesh has no surface '" + surface + "'");
+MechanicsSystem::Resultants MechanicsSystem::resultants(Vec y, const std::vector<std::string>& surfaces) const {
   ReadArray state(y);
   std::vector<double> f_u(displacement_dofs());
-  if (!assemble_internal(state.data(), nullptr, f_u.data(), nullptr, nullptr))
-    throw std::runtime_error("reaction_force: inverted element");
-  std::vector<int> nodes = faces->second;
-  std::sort(nodes.begin(), nodes.end());
-  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
-  Point3 force{};
-  for (int node : nodes)
-    if (dofs_.node_dof[node] >= 0)
-      for (int c = 0; c < 3; ++c) force[c] += f_u[dofs_.dof(node, c)];
-  return force;
+  Resultants result;
+  if (!assemble_internal(state.data(), nullptr, f_u.data(), nullptr, &result.elastic_energy))
+    throw std::runtime_error("reaction forces: inverted element");
+  for (const auto& surface : surfaces) {
+    const auto faces = mesh_.surface_faces.find(surface);
+    if (faces == mesh_.surface_faces.end()) throw std::runtime_error("the mesh has no surface '" + surface + "'");
+    std::vector<int> nodes = faces->second;
+    std::sort(nodes.begin(), nodes.end());
+    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    Point3 force{};
+    for (int node : nodes)
+      if (dofs_.node_dof[node] >= 0)
+        for (int c = 0; c < 3; ++c) force[c] += f_u[dofs_.dof(node, c)];
+    result.reactions.push_back(force);
+  }
+  return result;
 }
 
-double MechanicsSystem::elastic_energy(Vec y) const {
-  ReadArray state(y);
-  std::vector<double> f_u(displacement_dofs());
-  double energy = 0.0;
-  if (!assemble_internal(state.data(), nullptr, f_u.data(), nullptr, &energy))
-    throw std::runtime_error("elastic_energy: inverted element");
-  return energy;
+Point3 MechanicsSystem::reaction_force(Vec y, const std::string& surface) const {
+  return resultants(y, {surface}).reactions.front();
 }
+
+double MechanicsSystem::elastic_energy(Vec y) const { return resultants(y, {}).elastic_energy; }
 
 }  // namespace needlefem::mechanics

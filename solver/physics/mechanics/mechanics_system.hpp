@@ -94,6 +94,13 @@ class MechanicsSystem final : public DaeSystem {
   Point3 reaction_force(Vec y, const std::string& surface) const;
   // Instantaneous elastic energy of the tissue (J), viscous stresses not counted.
   double elastic_energy(Vec y) const;
+  // Both of the above from one assembly of the internal forces: the reaction on each of
+  // `surfaces`, in order, and the elastic energy.
+  struct Resultants {
+    std::vector<Point3> reactions;
+    double elastic_energy = 0.0;
+  };
+  Resultants resultants(Vec y, const std::vector<std::string>& surfaces) const;
 
  private:
   // Internal force f_int (all displacement dofs) and, when rates are given, the viscous rows
