@@ -4,7 +4,6 @@
 // DIR/<case>.json (rupture point, fracture force, the energy fit and its range).
 #include <filesystem>
 #include <fstream>
-#include <memory>
 #include <stdexcept>
 
 #include <fmt/core.h>
@@ -93,13 +92,10 @@ void run_force_trajectory(const CaseOptions& options) {
 }  // namespace
 
 void add_force_trajectory_command(CLI::App& app) {
-  auto options = std::make_shared<CaseOptions>();
-  auto* command = app.add_subcommand(
-      "force-trajectory",
-      "Paper 000's insertion force (Eq. 3.2: deformation energy of a brain-tip run, rupture, fracture 2 pi J_c r,\n"
-      "optional shaft friction; [insertion_force] keys) as a replay trajectory OUT/CASE.h5 + OUT/CASE.json");
-  options->add_to(*command, "out/force_trajectory");
-  command->callback([options] { run_force_trajectory(*options); });
+  add_case_command(app, "force-trajectory",
+                   "Paper 000's insertion force (Eq. 3.2: deformation energy of a brain-tip run, rupture, fracture 2 pi J_c r,\n"
+                   "optional shaft friction; [insertion_force] keys) as a replay trajectory OUT/CASE.h5 + OUT/CASE.json",
+                   "out/force_trajectory", run_force_trajectory);
 }
 
 }  // namespace needlefem::app

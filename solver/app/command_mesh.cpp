@@ -109,10 +109,9 @@ void run_mesh(const CaseOptions& options) {
 }  // namespace
 
 void add_mesh_command(CLI::App& app) {
-  auto* command = app.add_subcommand("mesh", "Mesh a case's scene: .msh, HDF5/XDMF view and a JSON mesh report");
-  auto options = std::make_shared<CaseOptions>();
-  options->add_to(*command, "out/mesh");
-  command->callback([options] { run_mesh(*options); });
+  add_case_command(app, "mesh",
+                   "Mesh a case's scene: .msh, HDF5/XDMF view and a JSON mesh report",
+                   "out/mesh", run_mesh);
 }
 
 }  // namespace needlefem::app

@@ -4,7 +4,6 @@
 // timings, the resolved case) and prints the table.
 #include <filesystem>
 #include <fstream>
-#include <memory>
 
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
@@ -84,13 +83,10 @@ void run_prbm_check(const CaseOptions& options) {
 }  // namespace
 
 void add_prbm_check_command(CLI::App& app) {
-  auto options = std::make_shared<CaseOptions>();
-  auto* command = app.add_subcommand(
-      "prbm-check",
-      "Paper 000's pseudo-rigid-body hinge angle (Eq. 2.7) against a large-rotation 3-D FEM of the compliant tip\n"
-      "([prbm_check] keys; E from steering.neck_youngs_modulus_gpa): table as JSON");
-  options->add_to(*command, "out/prbm_check");
-  command->callback([options] { run_prbm_check(*options); });
+  add_case_command(app, "prbm-check",
+                   "Paper 000's pseudo-rigid-body hinge angle (Eq. 2.7) against a large-rotation 3-D FEM of the compliant tip\n"
+                   "([prbm_check] keys; E from steering.neck_youngs_modulus_gpa): table as JSON",
+                   "out/prbm_check", run_prbm_check);
 }
 
 }  // namespace needlefem::app

@@ -31,11 +31,9 @@ void run_command(const CaseOptions& options) {
 }  // namespace
 
 void add_run_command(CLI::App& app) {
-  auto* command = app.add_subcommand(
-      "run", "Solve a case's tissue mechanics with IDA: HDF5/XDMF fields, history.csv and summary.json");
-  auto options = std::make_shared<CaseOptions>();
-  options->add_to(*command, "out/run");
-  command->callback([options] { run_command(*options); });
+  add_case_command(app, "run",
+                   "Solve a case's tissue mechanics with IDA: HDF5/XDMF fields, history.csv and summary.json",
+                   "out/run", run_command);
 }
 
 }  // namespace needlefem::app

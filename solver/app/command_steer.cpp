@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
-#include <memory>
 #include <numbers>
 #include <stdexcept>
 
@@ -74,13 +73,10 @@ void run_steer(const CaseOptions& options) {
 }  // namespace
 
 void add_steer_command(CLI::App& app) {
-  auto options = std::make_shared<CaseOptions>();
-  auto* command = app.add_subcommand(
-      "steer",
-      "Steer paper 000's compliant needle with a magnet schedule ([steering] keys): tip path as HDF5, clearance to\n"
-      "the obstacle and miss distance to the target as JSON. Plot: postprocess/plot_steering.py OUT/CASE.h5");
-  options->add_to(*command, "out/steer");
-  command->callback([options] { run_steer(*options); });
+  add_case_command(app, "steer",
+                   "Steer paper 000's compliant needle with a magnet schedule ([steering] keys): tip path as HDF5, clearance to\n"
+                   "the obstacle and miss distance to the target as JSON. Plot: postprocess/plot_steering.py OUT/CASE.h5",
+                   "out/steer", run_steer);
 }
 
 }  // namespace needlefem::app

@@ -18,6 +18,10 @@ struct CaseOptions {
   void add_to(CLI::App& command, const std::string& default_out);
 };
 
+// A sub-command that reads one case: `name CASE [--set K=V ...] [--out DIR]`, then calls `run`.
+void add_case_command(CLI::App& app, const std::string& name, const std::string& description,
+                      const std::string& default_out, void (*run)(const CaseOptions&));
+
 // Arguments after "--", passed unchanged to PETSc and SUNDIALS.
 const std::vector<std::string>& backend_options();
 

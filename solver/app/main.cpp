@@ -2,6 +2,7 @@
 // to the sub-commands; turns every error into one line on stderr and exit code 1.
 #include <cstdio>
 #include <exception>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,14 @@ void CaseOptions::add_to(CLI::App& command, const std::string& default_out) {
   std::string keys = "\nCase keys (type, range, default; units are in the names):\n";
   for (const auto& spec : case_schema()) keys += "  " + describe_key(spec) + "\n";
   command.footer(keys);
+}
+
+void add_case_command(CLI::App& app, const std::string& name, const std::string& description,
+                      const std::string& default_out, void (*run)(const CaseOptions&)) {
+  auto* command = app.add_subcommand(name, description);
+  auto options = std::make_shared<CaseOptions>();
+  options->add_to(*command, default_out);
+  command->callback([options, run] { run(*options); });
 }
 
 }  // namespace needlefem::app
