@@ -122,6 +122,9 @@ std::vector<KeySpec> build_schema() {
       real("motion.rotation_speed_deg_per_s", 180.0, -1e6, 1e6,
            "Needle rotation speed about its axis (paper: pi rad/s = 180 deg/s)"),
       real("motion.duration_s", 0.1, 0.0, 1e6, "Duration of the insertion and rotation"),
+      real("motion.ramp_s", 0.0, 0.0, 1e6,
+           "Start ramp: the speeds rise smoothly from 0 over this time (smoothstep; the travel loses "
+           "speed * ramp / 2). 0 = full speed at t = 0 as in the paper (geometry/needle_motion.hpp)", false),
       real("loading.ramp_s", 1.0, 0.0, 1e6, "Block: time over which the applied field rises linearly to F"),
       real("loading.hold_s", 0.0, 0.0, 1e6, "Block: time the applied field is then held", false),
 
@@ -178,8 +181,10 @@ std::vector<KeySpec> build_schema() {
       integer("integration.max_order", 5, 1, 5, "Highest BDF order IDA may use (1 = backward Euler)"),
       real("integration.initial_step_s", 0.0, 0.0, 1e6, "First step size; 0 lets IDA choose", false),
       real("integration.max_step_s", 0.0, 0.0, 1e6, "Largest step size; 0 means unbounded", false),
-      integer("integration.max_newton_iterations", 4, 1, 100,
-              "Newton iterations per step attempt before IDA cuts the step"),
+      integer("integration.max_newton_iterations", 20, 1, 100,
+              "Newton iterations per step attempt before IDA cuts the step (IDA's default is 4; contact's "
+              "stick/slip and open/close kinks need more: frictional brain tip on the 0.8 mm mesh, 4 stalls at "
+              "3 ms, 20 runs on; IDA still cuts at once when the iteration diverges)"),
       choice("integration.newton", "krylov", {"modified", "krylov"},
              "Newton linear solves: 'modified' reuses the factored Newton matrix; 'krylov' runs GMRES on the "
              "current Jacobian (difference quotients) preconditioned by the rarely refreshed factorisation"),
@@ -224,12 +229,17 @@ std::vector<KeySpec> build_schema() {
       real("contact.penalty_factor", 100.0, 0.0, 1e8,
            "c in the normal penalty eps_N = c mu0 / h_face (mu0: the tissue's instantaneous shear modulus, "
            "h_face: size of each contact face); the interpenetration is ~ pressure h_face / (c mu0)"),
+      choice("contact.friction_law", "return-map", {"return-map", "velocity"},
+             "return-map: elastic stick on a tangential penalty (= the normal one) and radial return to the "
+             "Coulomb cone, anchors updated at each accepted step; velocity: t_T = -mu p v_T / "
+             "sqrt(|v_T|^2 + eps_v^2) through IDA's y', which stalls IDA on the brain-tip scene below 1.5 mm "
+             "elements (physics/contact/penalty_contact.hpp)"),
       real("contact.slip_velocity_regularisation_mm_per_s", 1e-2, 0.0, 1e6,
-           "eps_v of the friction law t_T = -mu p v_T / sqrt(|v_T|^2 + eps_v^2): below the Coulomb limit "
-           "the interface creeps at ~eps_v instead of sticking exactly"),
+           "Velocity law: eps_v; below the Coulomb limit the interface creeps at ~eps_v instead of sticking "
+           "exactly"),
       choice("contact.friction_tangent", "secant", {"secant", "consistent"},
-             "Friction part of the Newton matrix: secant (robust as the Newton-Krylov preconditioner) or the "
-             "consistent linearisation (physics/contact/penalty_contact.hpp)"),
+             "Velocity law: friction part of the Newton matrix, secant (robust as the Newton-Krylov "
+             "preconditioner) or the consistent linearisation"),
       choice("contact.mode", "frictional", {"frictional", "tied"},
              "Brain-tip scene: frictional = penalty contact with Coulomb friction between the cavity and the "
              "rigid needle (the tissue may slide and separate); tied = cavity nodes moved rigidly with the "

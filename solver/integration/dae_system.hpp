@@ -29,6 +29,10 @@ class DaeSystem {
   virtual DaeStatus setup_jacobian(double t, Vec y, Vec ydot, double cj) = 0;
   // Solve J x = b with the matrix of the last setup_jacobian().
   virtual DaeStatus solve_jacobian(Vec b, Vec x) = 0;
+  // Called with each step the integrator accepts (state and rate there): systems with history
+  // that is not part of y (e.g. friction anchors) update it. Residuals in between see the
+  // history of the last accepted step, so a rejected step leaves no trace.
+  virtual void accept_step(double /*t*/, Vec /*y*/, Vec /*ydot*/) {}
   // Iterations of the inner (Krylov) solver so far; 0 for a direct solver.
   virtual long linear_iterations() const { return 0; }
   // True if solve_jacobian() iterates (Krylov) rather than applying a factorisation: IDA then

@@ -14,6 +14,8 @@
 // std::runtime_error naming the time reached and IDA's reason.
 #pragma once
 
+#include <functional>
+
 #include <memory>
 #include <optional>
 
@@ -128,7 +130,8 @@ class IdaIntegrator {
 
   // Integrate to exactly t_out (> time()): t_out is a stop time no step crosses, and on
   // return time() == t_out and state()/state_rate() hold y and y' there.
-  void advance_to(double t_out);
+  // after_step, if given, is called with the time reached after each accepted step (progress).
+  void advance_to(double t_out, const std::function<void(double)>& after_step = {});
 
   double time() const;
   Vec state() const;

@@ -31,6 +31,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 using fields::kScalarQuantities;
 constexpr double kMmPerM = 1e3;
+constexpr double kStepReportSeconds = 10.0;
 
 // summary.json names of the scalar quantities, in fields::ScalarQuantity order.
 constexpr std::array<const char*, kScalarQuantities> kSummaryNames{
@@ -132,6 +133,7 @@ struct RunRecord {
   double elastic_energy_j = 0.0;
   double max_kinetic_to_elastic = 0.0;
   IdaCounters counters;
+  mechanics::MechanicsSystem::Rejections rejections;
   IdaIntegrator::InitialRates initial_rates;  // the probe step giving y'(t0)
   long dofs = 0, displacement_dofs = 0;
   double mesh_s = 0.0, integration_s = 0.0, output_s = 0.0;
@@ -181,6 +183,10 @@ nlohmann::json summary_json(const Case& c, const material::Material* material, c
                  {"error_test_failures", record.counters.error_test_failures},
                  {"newton_convergence_failures", record.counters.newton_convergence_failures},
                  {"linear_iterations", record.counters.linear_iterations},
+                 {"step_rejections", {{"inverted_element_residuals", record.rejections.inverted_residuals},
+                                      {"inverted_element_jacobians", record.rejections.inverted_jacobians},
+                                      {"failed_factorisations", record.rejections.failed_factorisations},
+                                      {"failed_solves", record.rejections.failed_solves}}},
                  {"initial_rates", {{"converged", record.initial_rates.converged},
                                     {"iterations", record.initial_rates.iterations}}},
                  {"dofs", record.dofs},
@@ -260,9 +266,29 @@ nlohmann::json run_case(const Case& c, const RunOptions& options) {
                    "(last update {:.3g}); IDA starts from zero rates\n", record.initial_rates.last_update);
     }
     double integration_s = 0.0;
+    // Long output intervals still report progress: a line per accepted step, at most every few seconds.
+    auto last_report = Clock::now();
+    const auto report_step = [&](double t_step) {
+      if (!options.progress || seconds_since(last_report) < kStepReportSeconds) return;
+      last_report = Clock::now();
+      const IdaCounters k = integrator.counters();
+      const auto& r = system->rejections();
+      fmt::print(options.progress, "run:   t = {:.6g} s  step {:.3g} s  order {}  steps {}  Newton its {}  "
+                 "convergence failures {}  error-test failures {}  inverted elements {}+{}  failed solves {}\n",
+                 t_step, k.last_step, k.last_order, k.steps, k.newton_iterations, k.newton_convergence_failures,
+                 k.error_test_failures, r.inverted_residuals, r.inverted_jacobians,
+                 r.failed_factorisations + r.failed_solves);
+      std::fflush(options.progress);
+    };
     for (const double t : times) {
       const auto step_start = Clock::now();
-      if (t > integrator.time()) integrator.advance_to(t);
+      try {
+        if (t > integrator.time()) integrator.advance_to(t, report_step);
+      } catch (const std::exception&) {
+        record.counters = integrator.counters();  // the failed run's summary shows the failed attempts
+        record.rejections = system->rejections();
+        throw;
+      }
       integration_s += seconds_since(step_start);
 
       const auto output_start = Clock::now();
@@ -288,6 +314,7 @@ nlohmann::json run_case(const Case& c, const RunOptions& options) {
       if (record.elastic_energy_j > 0.0)
         record.max_kinetic_to_elastic = std::max(record.max_kinetic_to_elastic, f.kinetic_energy / record.elastic_energy_j);
       record.counters = integrator.counters();
+      record.rejections = system->rejections();
       history.row(t, record.counters, f, record.reactions, record.elastic_energy_j,
                   needle ? needle->history_cells() : "");
       record.time_reached_s = t;

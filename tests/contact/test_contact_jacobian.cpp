@@ -1,6 +1,9 @@
 // The contact Newton-matrix terms of one curved TRI6 face against central finite differences of
 // its residual, separately in positions (∂r/∂x) and velocities (∂r/∂v, the c_j part): a
-// frictional sphere (curvature terms) and a moving frictional plane (obstacle velocity).
+// frictional sphere (curvature terms) and a moving frictional plane (obstacle velocity), for
+// both friction laws. The return map's anchors sit where the face points were at t = 0, so the
+// jittered points at t stick or slip depending on how far the obstacle and the jitter moved them;
+// the test checks both branches occur and that the law has no velocity block.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -17,15 +20,18 @@ namespace {
 struct FdErrors {
   double position = 0.0, velocity = 0.0;  // max |J - J_fd| / max |J|
   double contact_area = 0.0;
+  double slipping_area = 0.0;
+  double velocity_block = 0.0;  // max |c_j ∂r/∂v| at c_j = 1
 };
 
 // A 1 mm block's top face; the contact surface is "z_max". Its faces are perturbed so points
 // penetrate the obstacle by various depths and slide in various directions.
-FdErrors compare_with_finite_differences(std::shared_ptr<const RigidObstacle> obstacle, double t) {
+FdErrors compare_with_finite_differences(std::shared_ptr<const RigidObstacle> obstacle, double t, FrictionLaw law) {
   const TetMesh mesh = structured_block({0.0, 1e-3}, {0.0, 1e-3}, {0.0, 1e-3});
   ContactParameters parameters;
   parameters.reference_modulus = 1000.0;
   parameters.slip_velocity_regularisation = 2e-5;
+  parameters.friction_law = law;
   parameters.friction_tangent = FrictionTangent::consistent;
   const PenaltyContact contact(mesh, "z_max", obstacle, parameters);
   EXPECT_EQ(contact.face_count(), 2u);
@@ -44,6 +50,7 @@ FdErrors compare_with_finite_differences(std::shared_ptr<const RigidObstacle> ob
     const FaceTerms exact_x = contact.face_terms(face, x.data(), v.data(), t, 0.0, true);
     const FaceTerms with_v = contact.face_terms(face, x.data(), v.data(), t, cj, true);
     errors.contact_area += exact_x.contact_area;
+    errors.slipping_area += exact_x.slipping_area;
     double largest = 0.0, error_x = 0.0, error_v = 0.0;
     for (double value : exact_x.jacobian) largest = std::max(largest, std::abs(value));
     const double hx = 1e-9, hv = 1e-9;
@@ -66,29 +73,59 @@ FdErrors compare_with_finite_differences(std::shared_ptr<const RigidObstacle> ob
     for (std::size_t k = 0; k < with_v.jacobian.size(); ++k)
       largest_v = std::max(largest_v, std::abs(with_v.jacobian[k] - exact_x.jacobian[k]));
     errors.position = std::max(errors.position, error_x / largest);
-    errors.velocity = std::max(errors.velocity, error_v / largest_v);
+    // The return map has no velocity block: there the error is absolute, and must be 0.
+    errors.velocity = std::max(errors.velocity, largest_v > 0.0 ? error_v / largest_v : error_v);
+    errors.velocity_block = std::max(errors.velocity_block, largest_v);
   }
-  std::printf("contact Jacobian vs central differences: position %.2e, velocity %.2e (relative to max entry)\n",
-              errors.position, errors.velocity);
+  std::printf("contact Jacobian vs central differences (%s law): position %.2e, velocity %.2e (relative to max "
+              "entry); contact area %.3e m^2, of which slipping %.3e\n",
+              law == FrictionLaw::return_map ? "return-map" : "velocity", errors.position, errors.velocity,
+              errors.contact_area, errors.slipping_area);
   return errors;
 }
 
-TEST(ContactJacobian, FrictionalSphereMatchesFiniteDifferences) {
+std::shared_ptr<const RigidObstacle> pressed_sphere() {
   // Ball of radius 2 mm pressed 30 µm into the top face near one corner, moving sideways.
-  auto sphere = std::make_shared<TranslatingSphere>(Point3{0.3e-3, 0.4e-3, 3e-3 - 30e-6}, 2e-3, Point3{2e-4, -1e-4, 0});
-  const FdErrors errors = compare_with_finite_differences(sphere, 0.0);
+  return std::make_shared<TranslatingSphere>(Point3{0.3e-3, 0.4e-3, 3e-3 - 30e-6}, 2e-3, Point3{2e-4, -1e-4, 0});
+}
+
+std::shared_ptr<const RigidObstacle> tilted_moving_plane() {
+  return std::make_shared<TranslatingPlane>(Point3{0, 0, 1e-3 + 5e-6}, Point3{0.1, -0.2, -1.0},
+                                            Point3{3e-4, 1e-4, -2e-5});
+}
+
+TEST(ContactJacobian, VelocityLawSphereMatchesFiniteDifferences) {
+  const FdErrors errors = compare_with_finite_differences(pressed_sphere(), 0.0, FrictionLaw::velocity);
   EXPECT_GT(errors.contact_area, 0.0);
   EXPECT_LT(errors.position, 1e-6);
   EXPECT_LT(errors.velocity, 1e-6);
 }
 
-TEST(ContactJacobian, MovingFrictionalPlaneMatchesFiniteDifferences) {
-  auto plane = std::make_shared<TranslatingPlane>(Point3{0, 0, 1e-3 + 5e-6}, Point3{0.1, -0.2, -1.0},
-                                                  Point3{3e-4, 1e-4, -2e-5});
-  const FdErrors errors = compare_with_finite_differences(plane, 0.5);
+TEST(ContactJacobian, VelocityLawMovingPlaneMatchesFiniteDifferences) {
+  const FdErrors errors = compare_with_finite_differences(tilted_moving_plane(), 0.5, FrictionLaw::velocity);
   EXPECT_GT(errors.contact_area, 0.0);
   EXPECT_LT(errors.position, 1e-6);
   EXPECT_LT(errors.velocity, 1e-6);
+}
+
+// At t = 0 the anchors are where the points were, so the jitter alone loads them: some stick,
+// some slip.
+TEST(ContactJacobian, ReturnMapSphereSticksAndSlipsAndMatchesFiniteDifferences) {
+  const FdErrors errors = compare_with_finite_differences(pressed_sphere(), 0.0, FrictionLaw::return_map);
+  EXPECT_GT(errors.slipping_area, 0.0);
+  EXPECT_LT(errors.slipping_area, errors.contact_area);
+  EXPECT_LT(errors.position, 1e-6);
+  EXPECT_EQ(errors.velocity_block, 0.0);
+  EXPECT_EQ(errors.velocity, 0.0);
+}
+
+// By t = 0.5 s the plane has carried the anchors 0.16 mm away: every point slips.
+TEST(ContactJacobian, ReturnMapMovingPlaneSlipsAndMatchesFiniteDifferences) {
+  const FdErrors errors = compare_with_finite_differences(tilted_moving_plane(), 0.5, FrictionLaw::return_map);
+  EXPECT_GT(errors.contact_area, 0.0);
+  EXPECT_EQ(errors.slipping_area, errors.contact_area);
+  EXPECT_LT(errors.position, 1e-6);
+  EXPECT_EQ(errors.velocity_block, 0.0);
 }
 
 }  // namespace

@@ -21,7 +21,7 @@ const double alpha = 20.0 * kPi / 180.0;
 
 BevelTip bevel_tip() { return {r, alpha, tau, shaft}; }
 BevelTip rounded_tip() { return {r, alpha, r, shaft}; }
-const NeedleMotion kMotion{1e-3, kPi, 0.1};  // 1 mm/s, 180 deg/s for 0.1 s
+const NeedleMotion kMotion{1e-3, kPi, 0.1, 0.0};  // 1 mm/s, 180 deg/s for 0.1 s
 
 Point3 add(const Point3& a, const Point3& b, double s = 1.0) { return {a[0] + s * b[0], a[1] + s * b[1], a[2] + s * b[2]}; }
 Point3 unit(const Point3& a) {
@@ -59,7 +59,7 @@ std::vector<SurfacePoint> bevel_surface_points(double rho) {
 
 TEST(NeedleObstacle, GapOfPointsAtKnownDistancesFromEachFace) {
   const RigidNeedle needle(bevel_tip(), kMotion);
-  EXPECT_DOUBLE_EQ(needle.edge_radius(), r / 50);
+  EXPECT_DOUBLE_EQ(needle.edge_radius(), r / 10);
   for (const auto& s : bevel_surface_points(needle.edge_radius()))
     for (double d : {-2e-6, 0.0, 1e-6, 2e-5}) {
       const ObstacleProjection p = needle.project_in_needle_frame(add(s.x, s.normal, d));
@@ -159,9 +159,9 @@ TEST(NeedleObstacle, PoseVelocityAndItsGradientMatchTheMotion) {
   // The material point now at x moves with w(x).
   const double angle = kMotion.rotation_speed * t, c = std::cos(angle), s = std::sin(angle);
   const Point3 X{c * x[0] + s * x[1], -s * x[0] + c * x[1], x[2] - kMotion.insertion_speed * t};
-  const Point3 ahead = needle.material_point(X, t + dt), behind = needle.material_point(X, t - dt);
+  const Point3 ahead = needle.from_body(X, t + dt), behind = needle.from_body(X, t - dt);
   for (int i = 0; i < 3; ++i) {
-    EXPECT_NEAR(needle.material_point(X, t)[i], x[i], 1e-18);
+    EXPECT_NEAR(needle.from_body(X, t)[i], x[i], 1e-18);
     EXPECT_NEAR((ahead[i] - behind[i]) / (2 * dt), p.velocity[i], 1e-12);
   }
   // W = ∂w/∂x.
@@ -178,6 +178,36 @@ TEST(NeedleObstacle, PoseVelocityAndItsGradientMatchTheMotion) {
   const ObstacleProjection after = needle.project(x, 0.2);
   for (int i = 0; i < 3; ++i) EXPECT_EQ(after.velocity[i], 0.0);
   EXPECT_EQ(needle.rear_face_centre(0.2)[2], kMotion.insertion_speed * kMotion.duration);
+}
+
+// The start ramp (geometry/needle_motion.hpp): speed fraction = dτ/dt by central differences
+// inside and across the ramp's end, 0 and its slope 0 at t = 0, the travel lost = v t_r / 2, and
+// the obstacle's velocity field and to_body/from_body follow the ramped pose.
+TEST(NeedleObstacle, StartRampIsSmoothAndTheVelocityFollowsIt) {
+  const NeedleMotion ramped{1e-3, kPi, 0.1, 0.01};
+  const double dt = 1e-7;
+  for (double t : {0.001, 0.005, 0.0099, 0.01, 0.0101, 0.05}) {
+    const double derivative = (ramped.elapsed(t + dt) - ramped.elapsed(t - dt)) / (2 * dt);
+    EXPECT_NEAR(derivative, ramped.speed_fraction(t), 1e-7) << "t = " << t;
+  }
+  EXPECT_EQ(ramped.elapsed(0.0), 0.0);
+  EXPECT_EQ(ramped.speed_fraction(0.0), 0.0);
+  // Zero acceleration at the start: the speed grows as 3 (t/t_r)², so its slope over the first dt
+  // is 3 dt/t_r², 1e-4 of the mid-ramp acceleration 1.5/t_r.
+  EXPECT_LT(ramped.speed_fraction(dt) / dt, 1e-4 * 1.5 / ramped.ramp);
+  EXPECT_NEAR(ramped.speed_fraction(0.01), 1.0, 1e-15);
+  EXPECT_NEAR(ramped.elapsed(0.1), 0.1 - 0.005, 1e-15);
+  EXPECT_EQ(ramped.speed_fraction(0.11), 0.0);
+
+  const RigidNeedle needle(bevel_tip(), ramped);
+  const Point3 X{0.3e-3, 0.45e-3, 0.4e-3};
+  const double t = 0.004;
+  const Point3 x = needle.from_body(X, t);
+  const Point3 back = needle.to_body(x, t);
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(back[i], X[i], 1e-18);
+  const Point3 ahead = needle.from_body(X, t + dt), behind = needle.from_body(X, t - dt);
+  const ObstacleProjection p = needle.project(x, t);
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR((ahead[i] - behind[i]) / (2 * dt), p.velocity[i], 1e-12);
 }
 
 }  // namespace

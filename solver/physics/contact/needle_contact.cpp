@@ -67,7 +67,7 @@ NeedleContact::SurfaceFields NeedleContact::surface_fields(double t, const doubl
     for (int c = 0; c < 3; ++c) x[c] = X[c] + y[dofs.dof(node, c)];
     const ObstacleProjection p = needle_->project(x, t);
     out.pressure[node] = node_penalty_[i] * std::max(0.0, -p.gap);
-    const Point3 chi = needle_->material_point(X, t);
+    const Point3 chi = needle_->from_body(X, t);
     Point3 relative;
     for (int c = 0; c < 3; ++c) relative[c] = x[c] - chi[c];
     const double normal_part = relative[0] * p.normal[0] + relative[1] * p.normal[1] + relative[2] * p.normal[2];

@@ -58,7 +58,7 @@ class NeedleContact {
   // CaseError for a needle kind that is not convex (compliant).
   NeedleContact(const Case& input, const TetMesh& mesh, double reference_modulus);
 
-  std::shared_ptr<const mechanics::SurfaceLoad> surface_load() const { return contact_; }
+  std::shared_ptr<mechanics::SurfaceLoad> surface_load() const { return contact_; }
   const RigidNeedle& needle() const { return *needle_; }
   const PenaltyContact& contact() const { return *contact_; }
 
@@ -82,7 +82,7 @@ class NeedleContact {
  private:
   const TetMesh& mesh_;
   std::shared_ptr<const RigidNeedle> needle_;
-  std::shared_ptr<const PenaltyContact> contact_;
+  std::shared_ptr<PenaltyContact> contact_;
   std::vector<int> cavity_nodes_;
   std::vector<double> node_penalty_;  // ε̄_a per cavity node (same order)
 };

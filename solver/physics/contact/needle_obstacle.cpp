@@ -6,13 +6,11 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "case/case.hpp"
 
 namespace needlefem::contact {
 
 namespace {
 
-constexpr double kMetresPerMm = 1e-3;
 constexpr double kPi = std::numbers::pi;
 // Samples of the edge curve before the golden-section search: fine enough that the distance
 // has one minimum between neighbouring samples for points near the needle.
@@ -20,7 +18,7 @@ constexpr int kEdgeSamples = 64;
 constexpr int kGoldenIterations = 64;  // bracket 2 (2π/64) 0.618^64 ≈ 1e-14 rad
 constexpr int kPolishIterations = 3;
 // Edge radius of the bevel tip's bevel-cylinder and fillet-cylinder edges, per needle radius.
-constexpr double kEdgeRadiusPerRadius = 0.02;
+constexpr double kEdgeRadiusPerRadius = 0.1;
 // Edge parameters this close to ±π are the kink where the two edge branches meet.
 constexpr double kKinkTolerance = 1e-6;
 // Relative tolerance (of r) for "the projection onto one surface lies in the other set".
@@ -76,14 +74,6 @@ ObstacleProjection from(const Candidate& c) {
 }
 
 }  // namespace
-
-double NeedleMotion::elapsed(double t) const { return std::clamp(t, 0.0, duration); }
-bool NeedleMotion::moving(double t) const { return t >= 0.0 && t <= duration; }
-
-NeedleMotion needle_motion_from_case(const Case& input) {
-  return {input.real("motion.insertion_speed_mm_per_s") * kMetresPerMm,
-          input.real("motion.rotation_speed_deg_per_s") * kPi / 180.0, input.real("motion.duration_s")};
-}
 
 RigidNeedle::RigidNeedle(const BevelTip& tip, const NeedleMotion& motion)
     : tip_(tip),
@@ -219,10 +209,17 @@ Point3 RigidNeedle::rear_face_centre(double t) const {
   return {0.0, 0.0, motion_.insertion_speed * motion_.elapsed(t)};
 }
 
-Point3 RigidNeedle::material_point(const Point3& X, double t) const {
+Point3 RigidNeedle::from_body(const Point3& xi, double t) const {
   const double angle = motion_.rotation_speed * motion_.elapsed(t), c = std::cos(angle), s = std::sin(angle);
   const Point3 d = rear_face_centre(t);
-  return {c * X[0] - s * X[1] + d[0], s * X[0] + c * X[1] + d[1], X[2] + d[2]};
+  return {c * xi[0] - s * xi[1] + d[0], s * xi[0] + c * xi[1] + d[1], xi[2] + d[2]};
+}
+
+Point3 RigidNeedle::to_body(const Point3& x, double t) const {
+  const double angle = motion_.rotation_speed * motion_.elapsed(t), c = std::cos(angle), s = std::sin(angle);
+  const Point3 d = rear_face_centre(t);
+  const Point3 relative{x[0] - d[0], x[1] - d[1], x[2] - d[2]};
+  return {c * relative[0] + s * relative[1], -s * relative[0] + c * relative[1], relative[2]};
 }
 
 ObstacleProjection RigidNeedle::project(const Point3& x, double t) const {
@@ -230,7 +227,7 @@ ObstacleProjection RigidNeedle::project(const Point3& x, double t) const {
   const Point3 d = rear_face_centre(t);
   const Point3 relative{x[0] - d[0], x[1] - d[1], x[2] - d[2]};
   // ξ = R_z(-angle)(x - d); rotate n and G back: n = R n_ξ, G = R G_ξ Rᵀ.
-  const Point3 xi{c * relative[0] + s * relative[1], -s * relative[0] + c * relative[1], relative[2]};
+  const Point3 xi = to_body(x, t);
   const ObstacleProjection local = project_in_needle_frame(xi);
   const Matrix3 R{c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0};
   ObstacleProjection p;
@@ -242,8 +239,8 @@ ObstacleProjection RigidNeedle::project(const Point3& x, double t) const {
       for (int k = 0; k < 3; ++k)
         for (int l = 0; l < 3; ++l)
           p.normal_gradient[3 * i + j] += R[3 * i + k] * local.normal_gradient[3 * k + l] * R[3 * j + l];
-  if (motion_.moving(t)) {
-    const double v = motion_.insertion_speed, omega = motion_.rotation_speed;
+  if (const double fraction = motion_.speed_fraction(t); fraction > 0.0) {
+    const double v = fraction * motion_.insertion_speed, omega = fraction * motion_.rotation_speed;
     p.velocity = {-omega * relative[1], omega * relative[0], v};
     p.velocity_gradient = {0.0, -omega, 0.0, omega, 0.0, 0.0, 0.0, 0.0, 0.0};
   }

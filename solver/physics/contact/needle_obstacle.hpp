@@ -13,15 +13,18 @@
 // "ray {ξ = η = 0, ζ <= shaft} ⊕ ball(r)": g = |x - p| - r with p the closest point of the ray,
 // G = (I - n nᵀ - [ζ < shaft] e_z e_zᵀ)/|x - p|.
 // Edges: the sharp bevel-cylinder and fillet-cylinder edges are rounded with a radius
-// ρ = min(τ, r/50) (10 µm for r = 0.5 mm, 25x below the 0.4 mm elements, so the shape the mesh
-// resolves is the same): the needle is the core C_ρ ⊕ ball(ρ), C_ρ the tip with every face moved
+// ρ = min(τ, r/10) (50 µm for r = 0.5 mm, 8x below the 0.4 mm elements, so the shape the mesh
+// resolves is nearly the same): the needle is the core C_ρ ⊕ ball(ρ), C_ρ the tip with every face moved
 // inwards by ρ (radius r - ρ, fillet τ - ρ, same fillet centre, bevel line moved by ρ), so
 //   g = g_core - ρ,  n and G those of the core at distance g + ρ.
 // Why: inside a sharp edge the nearest face switches across the edge's bisector, and the normal,
 // hence the penalty traction p n, jumps there; a residual that jumps stalls Newton at any step
 // size (measured: IDA_CONV_FAIL with h -> 1e-14 on the 0.8 mm mesh at 0.9 ms). With the rounding
-// the normal is continuous for every point shallower than ρ, which the penalty penetrations
-// (~p h/(c μ₀), micrometres) are.
+// the normal is continuous for every point shallower than ρ. Points are deeper than the penalty
+// penetration (~p h/(c μ₀), micrometres) alone: faceted cavity faces start up to ~10 µm inside
+// the needle on the 0.8 mm mesh (reference_gap_offset hides the interference from the gap, not
+// from the projection). Measured with the return-map friction on that mesh (0.1 s history):
+// ρ = r/50 stopped at 33 ms, ρ = r/10 ran to 92 ms.
 // Both A and B are convex, hence so is C, and the closest point is unique outside C:
 //   inside (sd_A <= 0 and sd_B <= 0): g = max(sd_A, sd_B), exact (the nearest boundary point is
 //     on the nearer of the two surfaces), with that surface's n and G. The normal jumps across the
@@ -36,16 +39,18 @@
 //     kink and the closest point stays put): G = (I - n nᵀ)/g. The penalty acts only where g <= 0,
 //     so the edge branch gives exact gaps (the initial-gap check) and the sign, never forces.
 // Pose (the needle frame coincides with the scene frame at t = 0; axis z through the centre of
-// the entry face, rear face of the tip at z = 0): with t' = min(max(t, 0), duration),
-//   x = R_z(ω t') ξ + v t' e_z;    reference point (centre of the rear face) = v t' e_z.
+// the entry face, rear face of the tip at z = 0): with τ(t) of the motion (geometry/needle_motion.hpp,
+// τ = t for the paper's constant speeds),
+//   x = R_z(ω τ) ξ + v τ e_z;    reference point (centre of the rear face) = v τ e_z.
 // Rigid velocity field, evaluated at the tissue point x itself (the needle material point that
 // coincides with x; at active points |x - p| is the penalty penetration, a fraction of h):
-//   w(x) = v e_z + ω e_z × (x - v t' e_z),   W = ∂w/∂x = ω [e_z]×,
+//   w(x) = τ'(t) (v e_z + ω e_z × (x - v τ e_z)),   W = ∂w/∂x = τ'(t) ω [e_z]×,
 // both zero for t > duration (the needle stops).
 #pragma once
 
 #include <memory>
 
+#include "geometry/needle_motion.hpp"
 #include "geometry/needle_tip.hpp"
 #include "physics/contact/rigid_obstacle.hpp"
 
@@ -55,20 +60,6 @@ class Case;
 
 namespace needlefem::contact {
 
-// Constant-velocity insertion along +z and rotation about z for t in [0, duration], then rest.
-struct NeedleMotion {
-  double insertion_speed = 0.0;  // v, m/s
-  double rotation_speed = 0.0;   // ω, rad/s
-  double duration = 0.0;         // s
-  double elapsed(double t) const;
-  // t in [0, duration]: velocities are v, ω, else 0. The end point counts as moving so that the
-  // implicit step that lands on t = duration integrates the motion up to it.
-  bool moving(double t) const;
-};
-
-// motion.insertion_speed_mm_per_s, motion.rotation_speed_deg_per_s, motion.duration_s.
-NeedleMotion needle_motion_from_case(const Case& input);
-
 class RigidNeedle final : public RigidObstacle {
  public:
   // Throws std::invalid_argument for tips that break their validity rules.
@@ -77,8 +68,9 @@ class RigidNeedle final : public RigidObstacle {
   ObstacleProjection project(const Point3& x, double t) const override;
   // Gap, normal and normal gradient in the needle frame (no velocity).
   ObstacleProjection project_in_needle_frame(const Point3& xi) const;
-  // Where the needle point that sat at X at t = 0 is at time t.
-  Point3 material_point(const Point3& X, double t) const;
+  // Where the needle point that sat at ξ at t = 0 is at time t, and its inverse.
+  Point3 from_body(const Point3& xi, double t) const override;
+  Point3 to_body(const Point3& x, double t) const override;
   Point3 rear_face_centre(double t) const;
   const NeedleMotion& motion() const { return motion_; }
   double edge_radius() const { return edge_radius_; }

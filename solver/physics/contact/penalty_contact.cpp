@@ -50,6 +50,95 @@ Point3 cross(const Point3& a, const Point3& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
 
+double dot(const Point3& a, const Point3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+// ∂(P r)/∂x for P = I - n nᵀ(x) and r with ∂r/∂x = I (return map: r = x - a) or 0 (velocity law,
+// whose r = v - w has its own x-dependence, -W, added by the caller):
+//   identity ? P : 0,  - (n·r) G - n (rᵀ G).
+Matrix3 projected_gradient(const ObstacleProjection& p, const Point3& r, bool identity) {
+  Matrix3 D{};
+  Point3 r_G{};  // rᵀ G
+  for (int k = 0; k < 3; ++k)
+    for (int j = 0; j < 3; ++j) r_G[k] += r[j] * p.normal_gradient[3 * j + k];
+  const double n_r = dot(p.normal, r);
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < 3; ++k)
+      D[3 * i + k] = (identity ? (i == k ? 1.0 : 0.0) - p.normal[i] * p.normal[k] : 0.0) -
+                     n_r * p.normal_gradient[3 * i + k] - p.normal[i] * r_G[k];
+  return D;
+}
+
+// Tangential traction of one point and its derivatives (position, velocity).
+struct Tangential {
+  Point3 traction{};
+  Matrix3 d_position{}, d_velocity{};
+  bool slipping = false;
+};
+
+// Return map against the anchor's current position (penalty_contact.hpp).
+Tangential return_map(const ObstacleProjection& p, const Point3& position, const Point3& anchor, double pressure,
+                      double normal_penalty, double tangential_penalty, double mu, bool with_jacobian) {
+  Tangential out;
+  Point3 r, trial;
+  for (int i = 0; i < 3; ++i) r[i] = position[i] - anchor[i];
+  const double n_r = dot(p.normal, r);
+  for (int i = 0; i < 3; ++i) trial[i] = -tangential_penalty * (r[i] - n_r * p.normal[i]);
+  const double size = std::sqrt(dot(trial, trial)), limit = mu * pressure;
+  const bool slipping = size > limit;
+  out.slipping = slipping;
+  const double scale = slipping ? limit / size : 1.0;
+  for (int i = 0; i < 3; ++i) out.traction[i] = scale * trial[i];
+  if (!with_jacobian) return out;
+  const Matrix3 D = projected_gradient(p, r, true);
+  if (!slipping) {
+    for (int k = 0; k < 9; ++k) out.d_position[k] = -tangential_penalty * D[k];
+    return out;
+  }
+  Point3 h;
+  for (int i = 0; i < 3; ++i) h[i] = trial[i] / size;
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < 3; ++k) {
+      double projected_D = 0.0;  // ((I - h hᵀ) D)_ik
+      for (int j = 0; j < 3; ++j) projected_D += ((i == j ? 1.0 : 0.0) - h[i] * h[j]) * D[3 * j + k];
+      out.d_position[3 * i + k] = -mu * normal_penalty * h[i] * p.normal[k] - scale * tangential_penalty * projected_D;
+    }
+  return out;
+}
+
+// Velocity-regularised Coulomb law (penalty_contact.hpp); tangent per `tangent`.
+Tangential velocity_law(const ObstacleProjection& p, const Point3& velocity, double pressure, double normal_penalty,
+                        double mu, double eps_v, FrictionTangent tangent, bool with_jacobian) {
+  Tangential out;
+  Point3 relative, slip;
+  for (int i = 0; i < 3; ++i) relative[i] = velocity[i] - p.velocity[i];
+  const double normal_rate = dot(relative, p.normal);
+  for (int i = 0; i < 3; ++i) slip[i] = relative[i] - normal_rate * p.normal[i];
+  const double s = std::sqrt(dot(slip, slip) + eps_v * eps_v);
+  out.slipping = dot(slip, slip) > eps_v * eps_v;
+  for (int i = 0; i < 3; ++i) out.traction[i] = -mu * pressure * slip[i] / s;
+  if (!with_jacobian) return out;
+  // T = (μ p / s)(I - v_T v_Tᵀ / s²); ∂v_T/∂x = -(n·r) G - n (rᵀ G) - P W.
+  const double slip_curvature = tangent == FrictionTangent::consistent ? 1.0 : 0.0;
+  Matrix3 T{}, slip_gradient = projected_gradient(p, relative, false);
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < 3; ++k) {
+      T[3 * i + k] = mu * pressure / s * ((i == k ? 1.0 : 0.0) - slip_curvature * slip[i] * slip[k] / (s * s));
+      for (int j = 0; j < 3; ++j)
+        slip_gradient[3 * i + k] -= ((i == j ? 1.0 : 0.0) - p.normal[i] * p.normal[j]) * p.velocity_gradient[3 * j + k];
+    }
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < 3; ++k) {
+      double T_slip = 0.0, T_P = 0.0;
+      for (int j = 0; j < 3; ++j) {
+        T_slip += T[3 * i + j] * slip_gradient[3 * j + k];
+        T_P += T[3 * i + j] * ((j == k ? 1.0 : 0.0) - p.normal[j] * p.normal[k]);
+      }
+      out.d_position[3 * i + k] = -T_slip + mu * normal_penalty * slip[i] / s * p.normal[k];
+      out.d_velocity[3 * i + k] = -T_P;
+    }
+  return out;
+}
+
 }  // namespace
 
 ContactParameters contact_parameters_from_case(const Case& input, double reference_modulus) {
@@ -60,6 +149,7 @@ ContactParameters contact_parameters_from_case(const Case& input, double referen
   p.reference_modulus = reference_modulus;
   p.friction_tangent =
       input.text("contact.friction_tangent") == "consistent" ? FrictionTangent::consistent : FrictionTangent::secant;
+  p.friction_law = input.text("contact.friction_law") == "velocity" ? FrictionLaw::velocity : FrictionLaw::return_map;
   return p;
 }
 
@@ -90,12 +180,11 @@ PenaltyContact::PenaltyContact(const TetMesh& mesh, const std::string& surface,
         }
       const Point3 normal = cross(tangent_xi, tangent_eta);
       point.area_weight = q.weight * std::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
-      if (parameters.reference_gap_offset) {
-        Point3 X{};
-        for (int a = 0; a < m; ++a)
-          for (int c = 0; c < 3; ++c) X[c] += point.shape[a] * mesh.nodes[face_nodes_[f * m + a]][c];
-        point.gap_offset = obstacle_->project(X, 0.0).gap;
-      }
+      Point3 X{};
+      for (int a = 0; a < m; ++a)
+        for (int c = 0; c < 3; ++c) X[c] += point.shape[a] * mesh.nodes[face_nodes_[f * m + a]][c];
+      if (parameters.reference_gap_offset) point.gap_offset = obstacle_->project(X, 0.0).gap;
+      point.anchor = obstacle_->to_body(X, 0.0);
       area += point.area_weight;
       face.points.push_back(point);
     }
@@ -108,18 +197,13 @@ PenaltyContact::PenaltyContact(const TetMesh& mesh, const std::string& surface,
 FaceTerms PenaltyContact::face_terms(std::size_t face, const double* x, const double* v, double t, double cj,
                                      bool with_jacobian, const Point3& moment_point) const {
   const int m = nodes_per_face_, n = 3 * m;
-  const double mu = parameters_.friction_coefficient, eps_v2 = std::pow(parameters_.slip_velocity_regularisation, 2);
+  const double mu = parameters_.friction_coefficient;
   const double penalty = faces_[face].penalty;
   FaceTerms out;
   out.residual.assign(n, 0.0);
   if (with_jacobian) out.jacobian.assign(static_cast<std::size_t>(n) * n, 0.0);
   for (const FacePoint& point : faces_[face].points) {
-    Point3 position{}, velocity{};
-    for (int a = 0; a < m; ++a)
-      for (int c = 0; c < 3; ++c) {
-        position[c] += point.shape[a] * x[3 * a + c];
-        velocity[c] += point.shape[a] * v[3 * a + c];
-      }
+    const Point3 position = point_position(point, x);
     const ObstacleProjection p = obstacle_->project(position, t);
     // Touching points (g = 0, e.g. every point of a surface that starts in contact) count as
     // closed: their penalty stiffness then enters the Newton matrix evaluated at the start state,
@@ -128,15 +212,23 @@ FaceTerms PenaltyContact::face_terms(std::size_t face, const double* x, const do
     if (gap > 0.0) continue;
     const Point3& normal = p.normal;
     const double pressure = -penalty * gap;
-    Point3 relative, slip, traction;
-    for (int i = 0; i < 3; ++i) relative[i] = velocity[i] - p.velocity[i];
-    const double normal_rate = relative[0] * normal[0] + relative[1] * normal[1] + relative[2] * normal[2];
-    for (int i = 0; i < 3; ++i) slip[i] = relative[i] - normal_rate * normal[i];
-    const double s = std::sqrt(slip[0] * slip[0] + slip[1] * slip[1] + slip[2] * slip[2] + eps_v2);
-    for (int i = 0; i < 3; ++i) traction[i] = pressure * normal[i] - mu * pressure * slip[i] / s;
+    Tangential tangential;
+    if (parameters_.friction_law == FrictionLaw::return_map) {
+      tangential = return_map(p, position, obstacle_->from_body(point.anchor, t), pressure, penalty, penalty, mu,
+                              with_jacobian);
+    } else {
+      Point3 velocity{};
+      for (int a = 0; a < m; ++a)
+        for (int c = 0; c < 3; ++c) velocity[c] += point.shape[a] * v[3 * a + c];
+      tangential = velocity_law(p, velocity, pressure, penalty, mu, parameters_.slip_velocity_regularisation,
+                                parameters_.friction_tangent, with_jacobian);
+    }
+    Point3 traction;
+    for (int i = 0; i < 3; ++i) traction[i] = pressure * normal[i] + tangential.traction[i];
 
     const double w = point.area_weight;
     out.contact_area += w;
+    if (tangential.slipping) out.slipping_area += w;
     Point3 arm;
     for (int i = 0; i < 3; ++i) arm[i] = position[i] - moment_point[i];
     const Point3 moment = cross(arm, traction);
@@ -148,41 +240,49 @@ FaceTerms PenaltyContact::face_terms(std::size_t face, const double* x, const do
       for (int i = 0; i < 3; ++i) out.residual[3 * a + i] -= w * point.shape[a] * traction[i];
     if (!with_jacobian) continue;
 
-    // T = (μ p / s)(I - v_T v_Tᵀ / s²); ∂v_T/∂x = -(n·r) G - n (rᵀ G) - P W.
-    std::array<double, 9> T{}, slip_gradient{}, d_position{}, d_velocity{};
-    std::array<double, 3> r_G{};  // rᵀ G
-    const double slip_curvature = parameters_.friction_tangent == FrictionTangent::consistent ? 1.0 : 0.0;
-    for (int k = 0; k < 3; ++k)
-      for (int j = 0; j < 3; ++j) r_G[k] += relative[j] * p.normal_gradient[3 * j + k];
+    Matrix3 d_position;
     for (int i = 0; i < 3; ++i)
-      for (int k = 0; k < 3; ++k) {
-        T[3 * i + k] = mu * pressure / s * ((i == k ? 1.0 : 0.0) - slip_curvature * slip[i] * slip[k] / (s * s));
-        double projected_W = 0.0;  // (P W)_ik
-        for (int j = 0; j < 3; ++j)
-          projected_W += ((i == j ? 1.0 : 0.0) - normal[i] * normal[j]) * p.velocity_gradient[3 * j + k];
-        slip_gradient[3 * i + k] = -normal_rate * p.normal_gradient[3 * i + k] - normal[i] * r_G[k] - projected_W;
-      }
-    for (int i = 0; i < 3; ++i)
-      for (int k = 0; k < 3; ++k) {
-        double T_slip = 0.0, T_P = 0.0;
-        for (int j = 0; j < 3; ++j) {
-          T_slip += T[3 * i + j] * slip_gradient[3 * j + k];
-          T_P += T[3 * i + j] * ((j == k ? 1.0 : 0.0) - normal[j] * normal[k]);
-        }
-        d_position[3 * i + k] = -penalty * normal[i] * normal[k] + pressure * p.normal_gradient[3 * i + k] - T_slip +
-                                mu * penalty * slip[i] / s * normal[k];
-        d_velocity[3 * i + k] = -T_P;
-      }
+      for (int k = 0; k < 3; ++k)
+        d_position[3 * i + k] = -penalty * normal[i] * normal[k] + pressure * p.normal_gradient[3 * i + k] +
+                                tangential.d_position[3 * i + k];
     for (int a = 0; a < m; ++a)
       for (int b = 0; b < m; ++b) {
         const double factor = -w * point.shape[a] * point.shape[b];
         for (int i = 0; i < 3; ++i)
           for (int k = 0; k < 3; ++k)
             out.jacobian[static_cast<std::size_t>(3 * a + i) * n + 3 * b + k] +=
-                factor * (d_position[3 * i + k] + cj * d_velocity[3 * i + k]);
+                factor * (d_position[3 * i + k] + cj * tangential.d_velocity[3 * i + k]);
       }
   }
   return out;
+}
+
+Point3 PenaltyContact::point_position(const FacePoint& point, const double* x) const {
+  Point3 position{};
+  for (int a = 0; a < nodes_per_face_; ++a)
+    for (int c = 0; c < 3; ++c) position[c] += point.shape[a] * x[3 * a + c];
+  return position;
+}
+
+void PenaltyContact::accept_step(double t, const double* y, const double* ydot, const mechanics::DofMap& dofs) {
+  if (parameters_.friction_law != FrictionLaw::return_map) return;
+  std::vector<double> x(3 * nodes_per_face_), v(3 * nodes_per_face_);
+  for (std::size_t f = 0; f < faces_.size(); ++f) {
+    gather(f, y, ydot, dofs, x.data(), v.data());
+    for (FacePoint& point : faces_[f].points) {
+      const Point3 position = point_position(point, x.data());
+      const ObstacleProjection p = obstacle_->project(position, t);
+      const double gap = p.gap - point.gap_offset;
+      Point3 anchor = position;  // out of contact: re-anchor where the point is
+      if (gap <= 0.0) {
+        const double penalty = faces_[f].penalty;
+        const Tangential tangential = return_map(p, position, obstacle_->from_body(point.anchor, t), -penalty * gap,
+                                                 penalty, penalty, parameters_.friction_coefficient, false);
+        for (int i = 0; i < 3; ++i) anchor[i] += tangential.traction[i] / penalty;
+      }
+      point.anchor = obstacle_->to_body(anchor, t);
+    }
+  }
 }
 
 void PenaltyContact::gather(std::size_t face, const double* y, const double* ydot, const mechanics::DofMap& dofs,

@@ -13,8 +13,29 @@
 //   instantaneous shear modulus. The penalty interpenetration -g = p_N h/(c μ₀) is then the
 //   same fraction of the local element size on every mesh, and the error it causes falls as 1/c
 //   (tests/contact: Hertz indentation at c = 10, 100 and 1000).
-// Friction (Coulomb coefficient μ, regularised by the slip velocity through y' of IDA; Wriggers
-// 2006 §5.2, Oden & Martins 1985):
+// Friction (Coulomb coefficient μ), one of two laws (contact.friction_law):
+//
+// return-map (default; Wriggers 2006 §5.2.3, Laursen 2002 §5.3): each quadrature point carries an
+// anchor ξ, a point of the obstacle's body frame where the tissue point is elastically tied; a(t)
+// = from_body(ξ, t) is where it is now. With r = x - a, P = I - n nᵀ, the elastic slip
+// g_T = P r and the tangential penalty ε_T = ε_N (the same c μ₀/h_face), the trial traction is
+// t* = -ε_T g_T, and
+//   stick  |t*| <= μ p_N:  t_T = t*,
+//   slip   |t*| >  μ p_N:  t_T = μ p_N t*/|t*|          (the radial return to the Coulomb cone).
+// After each step the integrator accepts (accept_step), the anchor moves to a = x + t_T/ε_T, the
+// point that leaves exactly the accepted traction, so the law is the backward-Euler integral of
+// Coulomb's rate-independent stick-slip relative to the last accepted state. Points out of
+// contact re-anchor where they are. Effect of the regularisation: a sticking point moves
+// |t_T|/ε_T <= μ p_N h/(c μ₀) relative to the needle (the same fraction of the element size as the
+// normal penetration, micrometres here); sliding points carry exactly μ p_N. The law does not use
+// y', so its Newton matrix stays bounded as IDA's steps shrink (the velocity law's c_j μ p/ε_v
+// does not), which is what lets IDA cut its way through stick/slip transitions.
+// Newton matrix (no c_j part), with D = ∂g_T/∂x = P - (n·r) G - n (rᵀ G):
+//   stick  ∂t_T/∂x = -ε_T D,
+//   slip   ∂t_T/∂x = -μ ε_N ĥ nᵀ - (μ p_N/|t*|)(I - ĥ ĥᵀ) ε_T D,   ĥ = t*/|t*|.
+//
+// velocity (regularised by the slip velocity through y' of IDA; Wriggers 2006 §5.2, Oden &
+// Martins 1985):
 //   r = v - w,  v_T = (I - n nᵀ) r,  t_T = -μ p_N v_T / √(|v_T|² + ε_v²).
 // Effect of the regularisation: |t_T| < μ p_N always, and |t_T| → μ p_N once |v_T| ≫ ε_v
 // (|t_T|/(μ p_N) = 1 - ε_v²/(2|v_T|²) + ...: 5e-5 at |v_T| = 100 ε_v). "Sticking" is a viscous
@@ -23,7 +44,7 @@
 // so over a time T it slips at most ε_v T φ/√(1-φ²); choose ε_v far below the driving speeds.
 // Traction on the tissue t = p_N n + t_T; residual of tissue node a (F = f_int - f_ext):
 //   r_a = -∫ N_a t dA₀  (reference area: the penalty and friction act per undeformed area).
-// Newton matrix (∂/∂u + c_j ∂/∂u̇), per point, with P = I - n nᵀ, s = √(|v_T|² + ε_v²),
+// Velocity law's Newton matrix (∂/∂u + c_j ∂/∂u̇), per point, with P = I - n nᵀ, s = √(|v_T|² + ε_v²),
 // T = (μ p_N / s)(I - v_T v_Tᵀ / s²):
 //   ∂t/∂x = -ε_N n nᵀ + p_N G - T ∂v_T/∂x + μ ε_N (v_T/s) nᵀ,
 //   ∂v_T/∂x = -(n·r) G - n (rᵀ G) - P W,        ∂t/∂v = -T P,
@@ -45,11 +66,14 @@
 // iteration (A = c_j μ p_N, K the tissue's stiffness, V the slip speed), which tends to 1 as the
 // steps shrink: measured, IDA stalls at the onset of slip. The residual, hence the solution, is
 // the same for both.
-// Which one a case uses: contact.friction_tangent, default secant. needlefem runs solve Newton by
+// Which one a velocity-law case uses: contact.friction_tangent, default secant. needlefem runs solve Newton by
 // GMRES on the exact Jacobian's action (integration.newton = krylov), so the tangent only
 // preconditions, and the secant one measured robust where the consistent one is not (1.5 mm
 // brain-tip mesh, 0.01 s: secant 14 steps, 27 Newton iterations, 3 factorisations; consistent
 // IDA_CONV_FAIL at t = 9.6 ms). ContactParameters{} keeps the consistent tangent for the tests.
+// Why the return map is the default: on the 0.8 mm brain-tip mesh the velocity law stalled IDA
+// (steps cut to 1e-8 s) at 1.5 ms with ε_v = 0.1 mm/s and at 34 ms with 0.01 mm/s, whatever the
+// tangent: as steps shrink c_j μ p/ε_v dominates the Newton matrix, so cutting does not help.
 //   J_ab = -∫ N_a N_b (∂t/∂x + c_j ∂t/∂v) dA₀       (zero where g > 0; touching points, g = 0,
 //   contribute their penalty stiffness so the first Newton matrix already sees the contact).
 #pragma once
@@ -70,13 +94,15 @@ class Case;
 namespace needlefem::contact {
 
 enum class FrictionTangent { secant, consistent };
+enum class FrictionLaw { return_map, velocity };
 
 struct ContactParameters {
   double friction_coefficient = 0.5;
   double penalty_factor = 100.0;              // c in ε_N = c μ₀ / h_face
   double reference_modulus = 0.0;             // μ₀, Pa
   double slip_velocity_regularisation = 1e-5; // ε_v, m/s
-  FrictionTangent friction_tangent = FrictionTangent::consistent;
+  FrictionTangent friction_tangent = FrictionTangent::consistent;  // velocity law only
+  FrictionLaw friction_law = FrictionLaw::return_map;
   // Measure each quadrature point's gap from its own gap in the reference configuration at t = 0,
   // g - g(X_q, 0): a surface meshed from the obstacle's shape then starts exactly in touch instead
   // of with the ± interference of its faceted curved faces (micrometres on a 0.4 mm mesh of a
@@ -95,6 +121,7 @@ struct FaceTerms {
   Point3 force_on_tissue{};   // ∫ t dA₀
   Point3 moment_on_tissue{};  // ∫ (x - moment_point) × t dA₀
   double contact_area = 0.0;  // reference area where g <= 0
+  double slipping_area = 0.0; // of which sliding: |t*| > μ p_N (return map), |v_T| > ε_v (velocity law)
 };
 
 // Sum over the surface; the obstacle feels the opposite.
@@ -126,12 +153,15 @@ class PenaltyContact final : public mechanics::SurfaceLoad {
                     double* f_u) const override;
   void add_jacobian(double t, const double* y, const double* ydot, double cj, const mechanics::DofMap& dofs,
                     Mat jacobian) const override;
+  // Return map: moves every point's anchor to what the accepted state (t, y) leaves it.
+  void accept_step(double t, const double* y, const double* ydot, const mechanics::DofMap& dofs) override;
 
  private:
   struct FacePoint {
     std::array<double, 6> shape{};
     double area_weight = 0.0;  // quadrature weight x reference area Jacobian
     double gap_offset = 0.0;   // g(X_q, 0) with reference_gap_offset, else 0
+    Point3 anchor{};           // return map: ξ in the obstacle's body frame (X_q at t = 0 to start)
   };
   struct Face {
     double penalty = 0.0;
@@ -139,6 +169,7 @@ class PenaltyContact final : public mechanics::SurfaceLoad {
   };
   void gather(std::size_t face, const double* y, const double* ydot, const mechanics::DofMap& dofs, double* x,
               double* v) const;
+  Point3 point_position(const FacePoint& point, const double* x) const;
 
   const TetMesh& mesh_;
   std::shared_ptr<const RigidObstacle> obstacle_;

@@ -12,8 +12,16 @@ double norm(const Point3& a) { return std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2]
 
 }  // namespace
 
+Point3 TranslatingObstacle::to_body(const Point3& x, double t) const {
+  return {x[0] - velocity_[0] * t, x[1] - velocity_[1] * t, x[2] - velocity_[2] * t};
+}
+
+Point3 TranslatingObstacle::from_body(const Point3& xi, double t) const {
+  return {xi[0] + velocity_[0] * t, xi[1] + velocity_[1] * t, xi[2] + velocity_[2] * t};
+}
+
 TranslatingPlane::TranslatingPlane(const Point3& point, const Point3& normal, const Point3& velocity)
-    : point_(point), velocity_(velocity) {
+    : TranslatingObstacle(velocity), point_(point) {
   const double length = norm(normal);
   if (!(length > 0.0)) throw std::invalid_argument("TranslatingPlane: zero normal");
   for (int i = 0; i < 3; ++i) normal_[i] = normal[i] / length;
@@ -28,7 +36,7 @@ ObstacleProjection TranslatingPlane::project(const Point3& x, double t) const {
 }
 
 TranslatingSphere::TranslatingSphere(const Point3& centre, double radius, const Point3& velocity)
-    : centre_(centre), radius_(radius), velocity_(velocity) {
+    : TranslatingObstacle(velocity), centre_(centre), radius_(radius) {
   if (!(radius > 0.0)) throw std::invalid_argument("TranslatingSphere: radius must be positive");
 }
 

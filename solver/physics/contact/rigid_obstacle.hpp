@@ -4,7 +4,9 @@
 //   n(x)      unit outward normal of the obstacle at the closest point (n = ∂g/∂x);
 //   G(x)      ∂n/∂x (curvature: 0 for a plane, (I - n nᵀ)/|x - c| for a sphere of centre c);
 //   w(x)      velocity of the obstacle's material point at the closest point;
-//   W(x)      ∂w/∂x (0 for a translating obstacle).
+//   W(x)      ∂w/∂x (0 for a translating obstacle);
+// and the rigid motion itself, for friction anchors that ride with the obstacle: the body-frame
+// coordinates ξ of a spatial point at time t and back (to_body(from_body(ξ, t), t) = ξ).
 // Poses are prescribed functions of time: a plane through p(t) = p0 + v t with fixed normal,
 // a sphere with centre c(t) = c0 + v t (Hertz indentation tests).
 #pragma once
@@ -29,20 +31,33 @@ class RigidObstacle {
  public:
   virtual ~RigidObstacle() = default;
   virtual ObstacleProjection project(const Point3& x, double t) const = 0;
+  virtual Point3 to_body(const Point3& x, double t) const = 0;
+  virtual Point3 from_body(const Point3& xi, double t) const = 0;
+};
+
+// Body frame = scene frame translated by v t (the translating obstacles below).
+class TranslatingObstacle : public RigidObstacle {
+ public:
+  explicit TranslatingObstacle(const Point3& velocity) : velocity_(velocity) {}
+  Point3 to_body(const Point3& x, double t) const override;
+  Point3 from_body(const Point3& xi, double t) const override;
+
+ protected:
+  Point3 velocity_;
 };
 
 // The half-space {(x - p(t))·n < 0} is solid; n is normalised on construction.
-class TranslatingPlane final : public RigidObstacle {
+class TranslatingPlane final : public TranslatingObstacle {
  public:
   TranslatingPlane(const Point3& point, const Point3& normal, const Point3& velocity);
   ObstacleProjection project(const Point3& x, double t) const override;
 
  private:
-  Point3 point_, normal_, velocity_;
+  Point3 point_, normal_;
 };
 
 // A solid ball of radius R whose centre moves as c0 + v t.
-class TranslatingSphere final : public RigidObstacle {
+class TranslatingSphere final : public TranslatingObstacle {
  public:
   TranslatingSphere(const Point3& centre, double radius, const Point3& velocity);
   ObstacleProjection project(const Point3& x, double t) const override;
@@ -50,7 +65,6 @@ class TranslatingSphere final : public RigidObstacle {
  private:
   Point3 centre_;
   double radius_;
-  Point3 velocity_;
 };
 
 }  // namespace needlefem::contact

@@ -9,12 +9,12 @@
 #include <string>
 
 #include "case/case.hpp"
+#include "geometry/needle_motion.hpp"
 
 namespace needlefem::mechanics {
 
 namespace {
 
-constexpr double kMetresPerMm = 1e-3;
 
 // Collects conditions so that a dof constrained again takes the latest field.
 class ConditionBuilder {
@@ -84,19 +84,16 @@ DirichletConditions block_conditions(const Case& input, const TetMesh& mesh, con
 }
 
 DirichletConditions brain_tip_conditions(const Case& input, const TetMesh& mesh, const DofMap& map) {
-  const double speed = input.real("motion.insertion_speed_mm_per_s") * kMetresPerMm;
-  const double angular_speed = input.real("motion.rotation_speed_deg_per_s") * std::numbers::pi / 180.0;
-  const double duration = input.real("motion.duration_s");
   ConditionBuilder builder(mesh, map);
   builder.constrain_surface("fixed", {0, 1, 2}, builder.add_field(kZeroField));
   if (input.text("contact.mode") != "tied") return builder.finish();
-  builder.constrain_surface("cavity", {0, 1, 2},
-                            builder.add_field([speed, angular_speed, duration](const Point3& X, double t) {
-                              const double elapsed = std::clamp(t, 0.0, duration);
-                              const double angle = angular_speed * elapsed;
+  const NeedleMotion motion = needle_motion_from_case(input);
+  builder.constrain_surface("cavity", {0, 1, 2}, builder.add_field([motion](const Point3& X, double t) {
+                              const double elapsed = motion.elapsed(t);
+                              const double angle = motion.rotation_speed * elapsed;
                               const double c = std::cos(angle), s = std::sin(angle);
                               return Point3{c * X[0] - s * X[1] - X[0], s * X[0] + c * X[1] - X[1],
-                                            speed * elapsed};
+                                            motion.insertion_speed * elapsed};
                             }));
   return builder.finish();
 }

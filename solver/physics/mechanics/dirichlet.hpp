@@ -15,10 +15,10 @@
 // fixed; the entry face is free. The needle acts on the cavity through frictional contact
 // (physics/contact/needle_contact.hpp, added by the caller as a surface load), unless
 // contact.mode = "tied": then the tissue nodes on the needle cavity ("cavity") follow the
-// rigid needle: with t' = min(t, motion.duration_s), insertion speed v and rotation speed ω
-// (motion.insertion_speed_mm_per_s, motion.rotation_speed_deg_per_s) about the needle axis
-// (the z axis through the centre of the entry face, pointing into the tissue),
-//   x(X, t) = R_z(ω t') X + v t' e_z,   u = x - X.
+// rigid needle: with τ(t) of the needle motion (geometry/needle_motion.hpp: τ = min(t, duration)
+// without a start ramp), insertion speed v and rotation speed ω about the needle axis (the z axis
+// through the centre of the entry face, pointing into the tissue),
+//   x(X, t) = R_z(ω τ) X + v τ e_z,   u = x - X.
 #pragma once
 
 #include <functional>

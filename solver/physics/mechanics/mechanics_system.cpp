@@ -161,13 +161,21 @@ DaeStatus MechanicsSystem::residual(double t, Vec y, Vec ydot, Vec F) {
   return guarded([&] {
     ReadArray state(y), rate(ydot);
     WriteArray out(F);
-    if (!assemble_internal(state.data(), rate.data(), out.data(), out.data() + displacement_dofs(), nullptr))
+    if (!assemble_internal(state.data(), rate.data(), out.data(), out.data() + displacement_dofs(), nullptr)) {
+      ++rejections_.inverted_residuals;
       return DaeStatus::recoverable;
+    }
     for (const auto& load : surface_loads_) load->add_residual(t, state.data(), rate.data(), dofs_, out.data());
     for (const auto& d : conditions_.dofs)
       out.data()[d.dof] = state.data()[d.dof] - conditions_.value(mesh_, d, t);
     return DaeStatus::ok;
   });
+}
+
+void MechanicsSystem::accept_step(double t, Vec y, Vec ydot) {
+  if (surface_loads_.empty()) return;
+  ReadArray state(y), rate(ydot);
+  for (const auto& load : surface_loads_) load->accept_step(t, state.data(), rate.data(), dofs_);
 }
 
 DaeStatus MechanicsSystem::setup_jacobian(double t, Vec y, Vec ydot, double cj) {
@@ -199,13 +207,19 @@ DaeStatus MechanicsSystem::setup_jacobian(double t, Vec y, Vec ydot, double cj) 
       for (const auto& load : surface_loads_) load->add_jacobian(t, state.data(), rate.data(), cj, dofs_, jacobian_);
     check(MatAssemblyBegin(jacobian_, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
     check(MatAssemblyEnd(jacobian_, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
-    if (inverted) return DaeStatus::recoverable;  // assembled anyway: the next setup can zero it
+    if (inverted) {
+      ++rejections_.inverted_jacobians;
+      return DaeStatus::recoverable;  // assembled anyway: the next setup can zero it
+    }
     std::vector<PetscInt> rows;
     rows.reserve(conditions_.dofs.size());
     for (const auto& d : conditions_.dofs) rows.push_back(d.dof);
     check(MatZeroRows(jacobian_, static_cast<PetscInt>(rows.size()), rows.data(), 1.0, nullptr, nullptr),
           "MatZeroRows");
-    if (!solver_->factor(jacobian_)) return DaeStatus::recoverable;
+    if (!solver_->factor(jacobian_)) {
+      ++rejections_.failed_factorisations;
+      return DaeStatus::recoverable;
+    }
     cj_ = cj;
     return DaeStatus::ok;
   });
@@ -244,7 +258,10 @@ DaeStatus MechanicsSystem::solve_jacobian(Vec b, Vec x) {
         }
       }
     }
-    if (!solver_->solve(rhs_, solution_)) return DaeStatus::recoverable;
+    if (!solver_->solve(rhs_, solution_)) {
+      ++rejections_.failed_solves;
+      return DaeStatus::recoverable;
+    }
 
     ReadArray in(b), x_u(solution_);
     WriteArray out(x);

@@ -72,11 +72,20 @@ class MechanicsSystem final : public DaeSystem {
   void absolute_tolerances(Vec atol, double displacement_m, double viscous_stress_pa) const;
   DaeStatus residual(double t, Vec y, Vec ydot, Vec F) override;
   DaeStatus setup_jacobian(double t, Vec y, Vec ydot, double cj) override;
+  void accept_step(double t, Vec y, Vec ydot) override;
   DaeStatus solve_jacobian(Vec b, Vec x) override;
   long linear_iterations() const override { return solver_->iterations(); }
+  // Why callbacks asked IDA for a smaller step (DaeStatus::recoverable), counted.
+  struct Rejections {
+    long inverted_residuals = 0;     // an element with det F <= 0 in a residual evaluation
+    long inverted_jacobians = 0;     // ... in a Newton-matrix setup
+    long failed_factorisations = 0;  // the linear solver could not factor the Newton matrix
+    long failed_solves = 0;          // ... or solve with it
+  };
+  const Rejections& rejections() const { return rejections_; }
 
   // Adds a surface's terms (contact, tractions; surface_load.hpp) to residual and Jacobian.
-  void add_surface_load(std::shared_ptr<const SurfaceLoad> load) { surface_loads_.push_back(std::move(load)); }
+  void add_surface_load(std::shared_ptr<SurfaceLoad> load) { surface_loads_.push_back(std::move(load)); }
 
   // --- layout and results ------------------------------------------------------------------
   PetscInt displacement_dofs() const { return dofs_.dof_count; }
@@ -115,7 +124,8 @@ class MechanicsSystem final : public DaeSystem {
   std::vector<elements::ElementGeometry> geometry_;  // per tissue element
   PetscInt viscous_per_element_ = 0;
   std::vector<char> prescribed_;  // per displacement dof
-  std::vector<std::shared_ptr<const SurfaceLoad>> surface_loads_;
+  std::vector<std::shared_ptr<SurfaceLoad>> surface_loads_;
+  Rejections rejections_;
 
   // Newton matrix data kept from setup_jacobian for solve_jacobian.
   double cj_ = 0.0;

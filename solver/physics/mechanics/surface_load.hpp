@@ -21,6 +21,9 @@ class SurfaceLoad {
   // Adds 3 x 3 node blocks with MatSetValuesBlocked (block index = node_dof / 3, ADD_VALUES).
   virtual void add_jacobian(double t, const double* y, const double* ydot, double cj, const DofMap& dofs,
                             Mat jacobian) const = 0;
+  // Called once per step the integrator accepts, with its state: loads with history (friction
+  // anchors) update it here. Residuals in between see the history of the last accepted step.
+  virtual void accept_step(double /*t*/, const double* /*y*/, const double* /*ydot*/, const DofMap& /*dofs*/) {}
 };
 
 }  // namespace needlefem::mechanics
