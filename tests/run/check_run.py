@@ -104,7 +104,9 @@ def block(args):
     check_common(out, summary, 5)
     l_end = 1.0 + RATE
     sigma = uniaxial_cauchy(l_end)
-    close(summary["max"]["log_strain"]["value"], math.log(l_end), 1e-6, "max log strain = ln(1.2)")
+    # The end faces prescribe the stretch; what departs from ln(1.2) is the lateral field's
+    # integration error, bounded by IDA's relative tolerance (1e-4; measured 1e-6 to 6e-6).
+    close(summary["max"]["log_strain"]["value"], math.log(l_end), 1e-4, "max log strain = ln(1.2)")
     close(summary["max"]["von_mises_pa"]["value"], sigma, 1e-3, "max von Mises = uniaxial Cauchy stress")
     close(summary["max"]["principal_stress_pa"]["value"], sigma, 1e-3, "max principal stress = uniaxial Cauchy stress")
     # The rate d ln l/dt = 0.2/l is largest at t = 0, where the run starts from consistent rates
