@@ -205,29 +205,31 @@ ObstacleProjection RigidNeedle::project_in_needle_frame(const Point3& xi) const 
   return p;
 }
 
-Point3 RigidNeedle::rear_face_centre(double t) const {
-  return {0.0, 0.0, motion_.insertion_speed * motion_.elapsed(t)};
+Point3 RigidNeedle::rear_face_centre(double t) const { return pose(t).d; }
+
+RigidNeedle::Pose RigidNeedle::pose(double t) const {
+  const double elapsed = motion_.elapsed(t), angle = motion_.rotation_speed * elapsed;
+  return {std::cos(angle), std::sin(angle), {0.0, 0.0, motion_.insertion_speed * elapsed}};
 }
 
-Point3 RigidNeedle::from_body(const Point3& xi, double t) const {
-  const double angle = motion_.rotation_speed * motion_.elapsed(t), c = std::cos(angle), s = std::sin(angle);
-  const Point3 d = rear_face_centre(t);
+Point3 RigidNeedle::Pose::from_body(const Point3& xi) const {
   return {c * xi[0] - s * xi[1] + d[0], s * xi[0] + c * xi[1] + d[1], xi[2] + d[2]};
 }
 
-Point3 RigidNeedle::to_body(const Point3& x, double t) const {
-  const double angle = motion_.rotation_speed * motion_.elapsed(t), c = std::cos(angle), s = std::sin(angle);
-  const Point3 d = rear_face_centre(t);
+Point3 RigidNeedle::Pose::to_body(const Point3& x) const {
   const Point3 relative{x[0] - d[0], x[1] - d[1], x[2] - d[2]};
   return {c * relative[0] + s * relative[1], -s * relative[0] + c * relative[1], relative[2]};
 }
 
+Point3 RigidNeedle::from_body(const Point3& xi, double t) const { return pose(t).from_body(xi); }
+Point3 RigidNeedle::to_body(const Point3& x, double t) const { return pose(t).to_body(x); }
+
 ObstacleProjection RigidNeedle::project(const Point3& x, double t) const {
-  const double angle = motion_.rotation_speed * motion_.elapsed(t), c = std::cos(angle), s = std::sin(angle);
-  const Point3 d = rear_face_centre(t);
-  const Point3 relative{x[0] - d[0], x[1] - d[1], x[2] - d[2]};
+  const Pose now = pose(t);
+  const double c = now.c, s = now.s;
+  const Point3 relative{x[0] - now.d[0], x[1] - now.d[1], x[2] - now.d[2]};
   // ξ = R_z(-angle)(x - d); rotate n and G back: n = R n_ξ, G = R G_ξ Rᵀ.
-  const Point3 xi = to_body(x, t);
+  const Point3 xi = now.to_body(x);
   const ObstacleProjection local = project_in_needle_frame(xi);
   const Matrix3 R{c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0};
   ObstacleProjection p;

@@ -76,6 +76,15 @@ class RigidNeedle final : public RigidObstacle {
   double edge_radius() const { return edge_radius_; }
 
  private:
+  // The rigid motion at one time: rotation R_z (cos, sin) and the rear-face centre d, computed
+  // once per projection (the contact search calls project() at every quadrature point).
+  struct Pose {
+    double c = 1.0, s = 0.0;
+    Point3 d{};
+    Point3 from_body(const Point3& xi) const;
+    Point3 to_body(const Point3& x) const;
+  };
+  Pose pose(double t) const;
   ObstacleProjection project_rounded(const Point3& xi) const;
   ObstacleProjection project_bevel(const Point3& xi) const;
   ObstacleProjection project_on_edge(const Point3& xi) const;
