@@ -229,9 +229,15 @@ std::vector<KeySpec> build_schema() {
       real("contact.penalty_factor", 100.0, 0.0, 1e8,
            "c in the normal penalty eps_N = c mu0 / h_face (mu0: the tissue's instantaneous shear modulus, "
            "h_face: size of each contact face); the interpenetration is ~ pressure h_face / (c mu0)"),
+      real("contact.penalty_smoothing", 0.25, 0.0, 100.0,
+           "s: the normal penalty is smoothed (C1, quadratic) over the first s h_face / c of penetration, "
+           "i.e. below the pressure s mu0 / 2; 0 gives the plain kink (physics/contact/penalty_contact.hpp)"),
+      real("contact.elastic_slip", 0.005, 0.0, 1.0,
+           "Return-map friction: the elastic slip s0 a sticking point may make before it slides, per contact "
+           "face size (Abaqus's default 0.005); the stick stiffness is mu p / s0"),
       choice("contact.friction_law", "return-map", {"return-map", "velocity"},
-             "return-map: elastic stick on a tangential penalty (= the normal one) and radial return to the "
-             "Coulomb cone, anchors updated at each accepted step; velocity: t_T = -mu p v_T / "
+             "return-map: elastic stick up to contact.elastic_slip and radial return to the Coulomb cone, "
+             "anchors updated at each accepted step; velocity: t_T = -mu p v_T / "
              "sqrt(|v_T|^2 + eps_v^2) through IDA's y', which stalls IDA on the brain-tip scene below 1.5 mm "
              "elements (physics/contact/penalty_contact.hpp)"),
       real("contact.slip_velocity_regularisation_mm_per_s", 1e-2, 0.0, 1e6,

@@ -75,39 +75,45 @@ struct Tangential {
   bool slipping = false;
 };
 
-// Return map against the anchor's current position (penalty_contact.hpp).
-Tangential return_map(const ObstacleProjection& p, const Point3& position, const Point3& anchor, double pressure,
-                      double normal_penalty, double tangential_penalty, double mu, bool with_jacobian) {
-  Tangential out;
-  Point3 r, trial;
+// Elastic slip g_T = P (x - a) of a point at x tied to the anchor's current position a.
+Point3 elastic_slip(const ObstacleProjection& p, const Point3& position, const Point3& anchor) {
+  Point3 r, slip;
   for (int i = 0; i < 3; ++i) r[i] = position[i] - anchor[i];
   const double n_r = dot(p.normal, r);
-  for (int i = 0; i < 3; ++i) trial[i] = -tangential_penalty * (r[i] - n_r * p.normal[i]);
-  const double size = std::sqrt(dot(trial, trial)), limit = mu * pressure;
-  const bool slipping = size > limit;
-  out.slipping = slipping;
-  const double scale = slipping ? limit / size : 1.0;
-  for (int i = 0; i < 3; ++i) out.traction[i] = scale * trial[i];
+  for (int i = 0; i < 3; ++i) slip[i] = r[i] - n_r * p.normal[i];
+  return slip;
+}
+
+// Return map with the allowed elastic slip s₀ (penalty_contact.hpp):
+//   t_T = -μ p g_T / max(s₀, |g_T|).
+Tangential return_map(const ObstacleProjection& p, const Point3& position, const Point3& anchor,
+                      const NormalPressure& normal, double mu, double allowed_slip, bool with_jacobian) {
+  Tangential out;
+  const Point3 slip = elastic_slip(p, position, anchor);
+  const double size = std::sqrt(dot(slip, slip));
+  out.slipping = size > allowed_slip;
+  const double reach = out.slipping ? size : allowed_slip;  // max(s₀, |g_T|)
+  const double scale = mu * normal.pressure / reach;
+  for (int i = 0; i < 3; ++i) out.traction[i] = -scale * slip[i];
   if (!with_jacobian) return out;
+  Point3 r;
+  for (int i = 0; i < 3; ++i) r[i] = position[i] - anchor[i];
   const Matrix3 D = projected_gradient(p, r, true);
-  if (!slipping) {
-    for (int k = 0; k < 9; ++k) out.d_position[k] = -tangential_penalty * D[k];
-    return out;
-  }
-  Point3 h;
-  for (int i = 0; i < 3; ++i) h[i] = trial[i] / size;
   for (int i = 0; i < 3; ++i)
     for (int k = 0; k < 3; ++k) {
-      double projected_D = 0.0;  // ((I - h hᵀ) D)_ik
-      for (int j = 0; j < 3; ++j) projected_D += ((i == j ? 1.0 : 0.0) - h[i] * h[j]) * D[3 * j + k];
-      out.d_position[3 * i + k] = -mu * normal_penalty * h[i] * p.normal[k] - scale * tangential_penalty * projected_D;
+      double along_slip = 0.0;  // slip: (ĝ ĝᵀ D)_ik, the part of D that only stretches |g_T|
+      if (out.slipping)
+        for (int j = 0; j < 3; ++j) along_slip += slip[i] * slip[j] / (size * size) * D[3 * j + k];
+      out.d_position[3 * i + k] =
+          mu * normal.stiffness * slip[i] / reach * p.normal[k] - scale * (D[3 * i + k] - along_slip);
     }
   return out;
 }
 
 // Velocity-regularised Coulomb law (penalty_contact.hpp); tangent per `tangent`.
-Tangential velocity_law(const ObstacleProjection& p, const Point3& velocity, double pressure, double normal_penalty,
-                        double mu, double eps_v, FrictionTangent tangent, bool with_jacobian) {
+Tangential velocity_law(const ObstacleProjection& p, const Point3& velocity, const NormalPressure& normal, double mu,
+                        double eps_v, FrictionTangent tangent, bool with_jacobian) {
+  const double pressure = normal.pressure, normal_stiffness = normal.stiffness;
   Tangential out;
   Point3 relative, slip;
   for (int i = 0; i < 3; ++i) relative[i] = velocity[i] - p.velocity[i];
@@ -133,7 +139,7 @@ Tangential velocity_law(const ObstacleProjection& p, const Point3& velocity, dou
         T_slip += T[3 * i + j] * slip_gradient[3 * j + k];
         T_P += T[3 * i + j] * ((j == k ? 1.0 : 0.0) - p.normal[j] * p.normal[k]);
       }
-      out.d_position[3 * i + k] = -T_slip + mu * normal_penalty * slip[i] / s * p.normal[k];
+      out.d_position[3 * i + k] = -T_slip + mu * normal_stiffness * slip[i] / s * p.normal[k];
       out.d_velocity[3 * i + k] = -T_P;
     }
   return out;
@@ -141,10 +147,17 @@ Tangential velocity_law(const ObstacleProjection& p, const Point3& velocity, dou
 
 }  // namespace
 
+NormalPressure normal_pressure(double depth, double penalty, double smoothing_depth) {
+  if (depth >= smoothing_depth) return {penalty * (depth - 0.5 * smoothing_depth), penalty};
+  return {0.5 * penalty * depth * depth / smoothing_depth, penalty * depth / smoothing_depth};
+}
+
 ContactParameters contact_parameters_from_case(const Case& input, double reference_modulus) {
   ContactParameters p;
   p.friction_coefficient = input.real("contact.friction_coefficient");
   p.penalty_factor = input.real("contact.penalty_factor");
+  p.penalty_smoothing = input.real("contact.penalty_smoothing");
+  p.elastic_slip = input.real("contact.elastic_slip");
   p.slip_velocity_regularisation = input.real("contact.slip_velocity_regularisation_mm_per_s") * kMetresPerMm;
   p.reference_modulus = reference_modulus;
   p.friction_tangent =
@@ -189,7 +202,10 @@ PenaltyContact::PenaltyContact(const TetMesh& mesh, const std::string& surface,
       face.points.push_back(point);
     }
     if (!(area > 0.0)) throw std::runtime_error(fmt::format("contact surface '{}': face {} has no area", surface, f));
-    face.penalty = parameters.penalty_factor * parameters.reference_modulus / std::sqrt(2.0 * area);
+    const double size = std::sqrt(2.0 * area);
+    face.penalty = parameters.penalty_factor * parameters.reference_modulus / size;
+    face.smoothing_depth = parameters.penalty_smoothing * size / parameters.penalty_factor;
+    face.elastic_slip = parameters.elastic_slip * size;
     faces_.push_back(std::move(face));
   }
 }
@@ -206,21 +222,23 @@ FaceTerms PenaltyContact::face_terms(std::size_t face, const double* x, const do
     const Point3 position = point_position(point, x);
     const ObstacleProjection p = obstacle_->project(position, t);
     // Touching points (g = 0, e.g. every point of a surface that starts in contact) count as
-    // closed: their penalty stiffness then enters the Newton matrix evaluated at the start state,
-    // without which IDA's modified Newton never sees the contact it is about to create.
+    // closed: with the plain penalty (s = 0) their stiffness then enters the Newton matrix
+    // evaluated at the start state, without which IDA's modified Newton never sees the contact it
+    // is about to create.
     const double gap = p.gap - point.gap_offset;
     if (gap > 0.0) continue;
     const Point3& normal = p.normal;
-    const double pressure = -penalty * gap;
+    const NormalPressure normal_law = normal_pressure(-gap, penalty, faces_[face].smoothing_depth);
+    const double pressure = normal_law.pressure;
     Tangential tangential;
     if (parameters_.friction_law == FrictionLaw::return_map) {
-      tangential = return_map(p, position, obstacle_->from_body(point.anchor, t), pressure, penalty, penalty, mu,
-                              with_jacobian);
+      tangential = return_map(p, position, obstacle_->from_body(point.anchor, t), normal_law, mu,
+                              faces_[face].elastic_slip, with_jacobian);
     } else {
       Point3 velocity{};
       for (int a = 0; a < m; ++a)
         for (int c = 0; c < 3; ++c) velocity[c] += point.shape[a] * v[3 * a + c];
-      tangential = velocity_law(p, velocity, pressure, penalty, mu, parameters_.slip_velocity_regularisation,
+      tangential = velocity_law(p, velocity, normal_law, mu, parameters_.slip_velocity_regularisation,
                                 parameters_.friction_tangent, with_jacobian);
     }
     Point3 traction;
@@ -243,7 +261,7 @@ FaceTerms PenaltyContact::face_terms(std::size_t face, const double* x, const do
     Matrix3 d_position;
     for (int i = 0; i < 3; ++i)
       for (int k = 0; k < 3; ++k)
-        d_position[3 * i + k] = -penalty * normal[i] * normal[k] + pressure * p.normal_gradient[3 * i + k] +
+        d_position[3 * i + k] = -normal_law.stiffness * normal[i] * normal[k] + pressure * p.normal_gradient[3 * i + k] +
                                 tangential.d_position[3 * i + k];
     for (int a = 0; a < m; ++a)
       for (int b = 0; b < m; ++b) {
@@ -275,10 +293,10 @@ void PenaltyContact::accept_step(double t, const double* y, const double* ydot, 
       const double gap = p.gap - point.gap_offset;
       Point3 anchor = position;  // out of contact: re-anchor where the point is
       if (gap <= 0.0) {
-        const double penalty = faces_[f].penalty;
-        const Tangential tangential = return_map(p, position, obstacle_->from_body(point.anchor, t), -penalty * gap,
-                                                 penalty, penalty, parameters_.friction_coefficient, false);
-        for (int i = 0; i < 3; ++i) anchor[i] += tangential.traction[i] / penalty;
+        const Point3 slip = elastic_slip(p, position, obstacle_->from_body(point.anchor, t));
+        const double size = std::sqrt(dot(slip, slip)), allowed = faces_[f].elastic_slip;
+        const double kept = size > allowed ? allowed / size : 1.0;  // a slipping point drags its anchor along
+        for (int i = 0; i < 3; ++i) anchor[i] -= kept * slip[i];
       }
       point.anchor = obstacle_->to_body(anchor, t);
     }

@@ -7,32 +7,45 @@
 // Dunavant 1985; TRI3: the same rule) — never at the nodes, whose weights are wrong (even
 // negative-valued shape functions) on quadratic faces:
 //   x = Σ N_a (X_a + u_a),  v = Σ N_a u̇_a,  (g, n, G, w, W) = obstacle.project(x, t).
-// Normal (penalty, energy ½ ε_N ⟨-g⟩² per reference area):
-//   p_N = ε_N ⟨-g⟩,   ε_N = c μ₀ / h_face,   h_face = √(2 A_face)  (the leg of the right
-//   isosceles triangle of the face's reference area), c = penalty_factor, μ₀ the tissue's
-//   instantaneous shear modulus. The penalty interpenetration -g = p_N h/(c μ₀) is then the
-//   same fraction of the local element size on every mesh, and the error it causes falls as 1/c
-//   (tests/contact: Hertz indentation at c = 10, 100 and 1000).
+// Normal (penalty, C¹-smoothed at first touch): with the penetration d = ⟨-g⟩,
+//   p_N = ε_N d² / (2δ)            for d < δ,
+//   p_N = ε_N (d - δ/2)            for d >= δ,
+//   ε_N = c μ₀ / h_face,   δ = s h_face / c,   h_face = √(2 A_face)  (the leg of the right
+//   isosceles triangle of the face's reference area), c = penalty_factor, s = penalty_smoothing,
+//   μ₀ the tissue's instantaneous shear modulus. The penalty interpenetration d = p_N h/(c μ₀)
+//   (+ δ/2) is then the same fraction of the local element size on every mesh, and the error it
+//   causes falls as 1/c (δ too; tests/contact: Hertz indentation at c = 10, 100 and 1000). The
+//   smoothing acts below the pressure ε_N δ/2 = s μ₀/2. Why: a needle cavity meshed from the
+//   needle starts in touch everywhere, and most of the shaft stays touching at nearly zero
+//   pressure; with the plain kink the stiffness of thousands of such points jumps between 0 and
+//   ε_N from one Newton iterate to the next (measured: hundreds of points changing state per
+//   iteration, IDA_CONV_FAIL with steps cut to 1e-9 s at 2-9 ms on the 0.4 mm brain-tip mesh).
 // Friction (Coulomb coefficient μ), one of two laws (contact.friction_law):
 //
-// return-map (default; Wriggers 2006 §5.2.3, Laursen 2002 §5.3): each quadrature point carries an
-// anchor ξ, a point of the obstacle's body frame where the tissue point is elastically tied; a(t)
-// = from_body(ξ, t) is where it is now. With r = x - a, P = I - n nᵀ, the elastic slip
-// g_T = P r and the tangential penalty ε_T = ε_N (the same c μ₀/h_face), the trial traction is
-// t* = -ε_T g_T, and
-//   stick  |t*| <= μ p_N:  t_T = t*,
-//   slip   |t*| >  μ p_N:  t_T = μ p_N t*/|t*|          (the radial return to the Coulomb cone).
-// After each step the integrator accepts (accept_step), the anchor moves to a = x + t_T/ε_T, the
-// point that leaves exactly the accepted traction, so the law is the backward-Euler integral of
-// Coulomb's rate-independent stick-slip relative to the last accepted state. Points out of
-// contact re-anchor where they are. Effect of the regularisation: a sticking point moves
-// |t_T|/ε_T <= μ p_N h/(c μ₀) relative to the needle (the same fraction of the element size as the
-// normal penetration, micrometres here); sliding points carry exactly μ p_N. The law does not use
-// y', so its Newton matrix stays bounded as IDA's steps shrink (the velocity law's c_j μ p/ε_v
-// does not), which is what lets IDA cut its way through stick/slip transitions.
-// Newton matrix (no c_j part), with D = ∂g_T/∂x = P - (n·r) G - n (rᵀ G):
-//   stick  ∂t_T/∂x = -ε_T D,
-//   slip   ∂t_T/∂x = -μ ε_N ĥ nᵀ - (μ p_N/|t*|)(I - ĥ ĥᵀ) ε_T D,   ĥ = t*/|t*|.
+// return-map (default; Wriggers 2006 §5.2.3, Laursen 2002 §5.3, with the elastic-slip stick
+// stiffness of Abaqus's penalty friction, Abaqus Analysis User's Guide §37.1.5): each quadrature
+// point carries an anchor ξ, a point of the obstacle's body frame where the tissue point is
+// elastically tied; a(t) = from_body(ξ, t) is where it is now. With r = x - a, P = I - n nᵀ and
+// the elastic slip g_T = P r, a point may slip elastically by up to s₀ = e h_face (e =
+// elastic_slip, default 0.005 as in Abaqus) before it slides:
+//   t_T = -μ p_N g_T / max(s₀, |g_T|),
+// i.e. stick (|g_T| <= s₀) on the tangential stiffness μ p_N / s₀, and slip (|g_T| > s₀) at
+// exactly the Coulomb limit μ p_N opposite to g_T (the radial return). After each step the
+// integrator accepts (accept_step), a sliding point's anchor is dragged along to |g_T| = s₀
+// (a = x - s₀ ĝ, ĝ = g_T/|g_T|), a sticking one keeps its anchor, and points out of contact
+// re-anchor where they are: the backward-Euler integral of Coulomb's rate-independent stick-slip
+// relative to the last accepted state. Effect of the regularisation: a sticking point moves at
+// most s₀ (1.5 µm on 0.3 mm faces) relative to the needle; sliding points carry exactly μ p_N.
+// Why the stick stiffness scales with p_N and not with ε_N: the stick zone is then s₀ wide at
+// every pressure. With ε_T = ε_N it was μ p_N/ε_N, nanometres at the shaft's near-zero
+// pressures, below Newton's resolution, and hundreds of points flipped between stick and slip at
+// every iterate (measured on the 0.4 mm mesh; with the elastic slip and the smoothing above,
+// the Table I tip r = 0.83 mm runs its 0.1 s history at c = 100).
+// The law does not use y', so its Newton matrix stays bounded as IDA's steps shrink (the velocity
+// law's c_j μ p/ε_v does not), which is what lets IDA cut its way through stick/slip transitions.
+// Newton matrix (no c_j part), with D = ∂g_T/∂x = P - (n·r) G - n (rᵀ G), m = max(s₀, |g_T|),
+// p' = dp_N/dd:
+//   ∂t_T/∂x = μ p' (g_T/m) nᵀ - (μ p_N/m) (D - [slip] ĝ ĝᵀ D).
 //
 // velocity (regularised by the slip velocity through y' of IDA; Wriggers 2006 §5.2, Oden &
 // Martins 1985):
@@ -74,8 +87,8 @@
 // Why the return map is the default: on the 0.8 mm brain-tip mesh the velocity law stalled IDA
 // (steps cut to 1e-8 s) at 1.5 ms with ε_v = 0.1 mm/s and at 34 ms with 0.01 mm/s, whatever the
 // tangent: as steps shrink c_j μ p/ε_v dominates the Newton matrix, so cutting does not help.
-//   J_ab = -∫ N_a N_b (∂t/∂x + c_j ∂t/∂v) dA₀       (zero where g > 0; touching points, g = 0,
-//   contribute their penalty stiffness so the first Newton matrix already sees the contact).
+//   J_ab = -∫ N_a N_b (∂t/∂x + c_j ∂t/∂v) dA₀       (zero where g > 0; with s = 0 touching points,
+//   g = 0, contribute ε_N so the first Newton matrix already sees the contact; smoothed, p' = 0 there).
 #pragma once
 
 #include <array>
@@ -99,6 +112,8 @@ enum class FrictionLaw { return_map, velocity };
 struct ContactParameters {
   double friction_coefficient = 0.5;
   double penalty_factor = 100.0;              // c in ε_N = c μ₀ / h_face
+  double penalty_smoothing = 0.25;            // s in δ = s h_face / c (0: the plain kink)
+  double elastic_slip = 0.005;                // e in s₀ = e h_face (return map)
   double reference_modulus = 0.0;             // μ₀, Pa
   double slip_velocity_regularisation = 1e-5; // ε_v, m/s
   FrictionTangent friction_tangent = FrictionTangent::consistent;  // velocity law only
@@ -110,6 +125,13 @@ struct ContactParameters {
   // an inconsistent start). The offsets shrink with the faces' interpolation error (~h³/R²).
   bool reference_gap_offset = false;
 };
+
+// Normal pressure p_N(d) and its slope dp_N/dd at penetration d = -g >= 0 (the smoothed law above;
+// smoothing_depth δ = 0 gives the plain penalty).
+struct NormalPressure {
+  double pressure = 0.0, stiffness = 0.0;
+};
+NormalPressure normal_pressure(double depth, double penalty, double smoothing_depth);
 
 // [contact] keys; μ₀ from the caller (the material's instantaneous shear modulus).
 ContactParameters contact_parameters_from_case(const Case& input, double reference_modulus);
@@ -165,6 +187,8 @@ class PenaltyContact final : public mechanics::SurfaceLoad {
   };
   struct Face {
     double penalty = 0.0;
+    double smoothing_depth = 0.0;  // δ
+    double elastic_slip = 0.0;     // s₀, m
     std::vector<FacePoint> points;
   };
   void gather(std::size_t face, const double* y, const double* ydot, const mechanics::DofMap& dofs, double* x,
