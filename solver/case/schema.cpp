@@ -102,6 +102,12 @@ std::vector<KeySpec> build_schema() {
       real("needle.neck_diameter_mm", 0.2, 0.0, 100.0, "Compliant tip: neck diameter d"),
       real("needle.point_length_mm", 0.5, 0.0, 100.0, "Compliant tip: length of the conical point ending the head",
            false),
+      flag("needle.deflection_check", false,
+           "Brain-tip frictional runs: at every output time, solve the linear-elastic needle tip (region "
+           "\"needle\", clamped on its rear face) under the contact loads and report its largest deflection "
+           "(summary needle.deflection_check; physics/contact/needle_elasticity.hpp)"),
+      real("needle.youngs_modulus_gpa", 200.0, 0.0, 1e4, "Young's modulus of the needle for needle.deflection_check"),
+      real("needle.poisson_ratio", 0.29, -1.0, 0.499, "Poisson's ratio of the needle for needle.deflection_check"),
       flag("needle.mesh_volume", true,
            "Also mesh the needle tip volume (region \"needle\", conforming on the cavity): used by the "
            "deformable-needle option; the rigid needle needs only its geometry"),
@@ -235,6 +241,9 @@ std::vector<KeySpec> build_schema() {
       real("contact.elastic_slip", 0.005, 0.0, 1.0,
            "Return-map friction: the elastic slip s0 a sticking point may make before it slides, per contact "
            "face size (Abaqus's default 0.005); the stick stiffness is mu p / s0"),
+      real("contact.rate_strengthening_s_per_m", 2.0, 0.0, 1e6,
+           "Return-map friction: beta in the rate-strengthening traction -beta p v_T added to the Coulomb "
+           "traction (friction coefficient mu + beta |v_T| while sliding at v_T)", false),
       choice("contact.friction_law", "return-map", {"return-map", "velocity"},
              "return-map: elastic stick up to contact.elastic_slip and radial return to the Coulomb cone, "
              "anchors updated at each accepted step; velocity: t_T = -mu p v_T / "

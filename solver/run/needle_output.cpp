@@ -1,7 +1,9 @@
 #include "run/needle_output.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <limits>
 
 #include <fmt/core.h>
 
@@ -15,6 +17,7 @@ namespace {
 
 constexpr double kMmPerM = 1e3;
 constexpr double kMm2PerM2 = 1e6;
+constexpr double kPaPerGpa = 1e9;
 
 double largest_magnitude(const std::vector<double>& values) {
   double largest = 0.0;
@@ -34,6 +37,21 @@ NeedleOutput::NeedleOutput(const Case& input, const TetMesh& mesh, mechanics::Me
                            double reference_modulus)
     : system_(system), contact_(input, mesh, reference_modulus), initial_gap_(contact_.initial_gap()) {
   system.add_surface_load(contact_.surface_load());
+  if (!input.flag("needle.deflection_check")) return;
+  youngs_modulus_pa_ = input.real("needle.youngs_modulus_gpa") * kPaPerGpa;
+  poisson_ratio_ = input.real("needle.poisson_ratio");
+  const NeedleMotion& motion = contact_.needle().motion();
+  needle_travel_m_ = std::abs(motion.insertion_speed) * motion.elapsed(motion.duration);
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    elasticity_ = std::make_unique<contact::NeedleElasticity>(mesh, youngs_modulus_pa_, poisson_ratio_);
+  } catch (const std::runtime_error& e) {
+    throw input.error("needle.deflection_check", e.what());
+  }
+  elasticity_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  deflection_check_ = true;
+  needle_dofs_ = elasticity_->dofs();
+  needle_elements_ = elasticity_->elements();
 }
 
 std::vector<output::FieldSpec> NeedleOutput::field_specs() {
@@ -54,6 +72,15 @@ void NeedleOutput::evaluate(double t, Vec y, Vec ydot) {
   times_.push_back(t);
   axial_force_.push_back(load_.axial_force());
   torque_.push_back(load_.torque());
+  if (!elasticity_) return;
+  const auto start = std::chrono::steady_clock::now();
+  const auto deflection =
+      elasticity_->deflection(contact_.nodal_loads_in_needle_frame(t, state.data(), rate.data(), system_.dof_map()));
+  elasticity_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (deflection.max_m >= largest_deflection_.max_m) {
+    largest_deflection_ = deflection;
+    largest_deflection_time_ = t;
+  }
 }
 
 std::string NeedleOutput::history_cells() const {
@@ -81,6 +108,29 @@ nlohmann::json NeedleOutput::summary() const {
                   {"edge_note", "the needle's bevel and fillet edges are rounded with this radius (needle_obstacle.hpp): "
                                 "cavity nodes on those edges start up to about this far from the needle"},
                   {"cavity_faces", contact_.contact().face_count()}};
+  if (deflection_check_) {
+    double smallest_slip = std::numeric_limits<double>::infinity();
+    for (std::size_t f = 0; f < contact_.contact().face_count(); ++f)
+      smallest_slip = std::min(smallest_slip, contact_.contact().elastic_slip(f));
+    const Point3& where = largest_deflection_.where;
+    s["needle"]["deflection_check"] = {
+        {"max_deflection_m", largest_deflection_.max_m},
+        {"time_s", largest_deflection_time_},
+        {"position_mm", {where[0] * kMmPerM, where[1] * kMmPerM, where[2] * kMmPerM}},
+        {"elastic_energy_j", largest_deflection_.elastic_energy_j},
+        {"smallest_elastic_slip_m", smallest_slip},
+        {"deflection_per_elastic_slip", largest_deflection_.max_m / smallest_slip},
+        {"needle_travel_m", needle_travel_m_},
+        {"deflection_per_travel", needle_travel_m_ > 0.0 ? largest_deflection_.max_m / needle_travel_m_ : 0.0},
+        {"youngs_modulus_pa", youngs_modulus_pa_},
+        {"poisson_ratio", poisson_ratio_},
+        {"needle_dofs", needle_dofs_},
+        {"needle_elements", needle_elements_},
+        {"seconds", elasticity_seconds_},
+        {"note", "one-way check: the linear-elastic tip clamped on its rear face under the rigid run's contact "
+                 "loads (physics/contact/needle_elasticity.hpp); a deflection far below the smallest elastic "
+                 "slip s0 (the contact's own resolution) cannot change the tissue's answer"}};
+  }
   return s;
 }
 

@@ -9,7 +9,11 @@
 //                faces carry no cells of their own; ParaView shows them on the tissue surface);
 //   summary.json "needle": largest |axial force| and |torque| over the output times with their
 //                signed histories, and "contact": the initial gap of the cavity against the
-//                needle and the penalty parameters.
+//                needle and the penalty parameters;
+//                with needle.deflection_check, "needle"."deflection_check": the steel tip's
+//                largest elastic deflection under the contact loads over the output times
+//                (physics/contact/needle_elasticity.hpp), beside the contact's own resolution
+//                (the smallest elastic slip s₀) and the needle's travel.
 #pragma once
 
 #include <memory>
@@ -21,6 +25,7 @@
 
 #include "output/result_file.hpp"
 #include "physics/contact/needle_contact.hpp"
+#include "physics/contact/needle_elasticity.hpp"
 
 namespace needlefem {
 class Case;
@@ -53,6 +58,9 @@ class NeedleOutput {
   const contact::NeedleLoad& load() const { return load_; }
 
   nlohmann::json summary() const;
+  // Frees the deflection check's PETSc objects (call before PETSc is finalised; summary() keeps
+  // what it found).
+  void release_solvers() { elasticity_.reset(); }
 
  private:
   const mechanics::MechanicsSystem& system_;
@@ -61,6 +69,12 @@ class NeedleOutput {
   contact::NeedleLoad load_;
   contact::NeedleContact::SurfaceFields fields_;
   std::vector<double> times_, axial_force_, torque_;
+  std::unique_ptr<contact::NeedleElasticity> elasticity_;  // needle.deflection_check
+  contact::NeedleElasticity::Deflection largest_deflection_;
+  double largest_deflection_time_ = 0.0, needle_travel_m_ = 0.0, elasticity_seconds_ = 0.0;
+  double youngs_modulus_pa_ = 0.0, poisson_ratio_ = 0.0;
+  bool deflection_check_ = false;
+  std::size_t needle_dofs_ = 0, needle_elements_ = 0;
 };
 
 }  // namespace needlefem::run

@@ -234,6 +234,13 @@ nlohmann::json run_case(const Case& c, const RunOptions& options) {
     material = std::make_unique<material::Material>(material::material_from_case(c));
     const auto system = mechanics::MechanicsSystem::from_case(c, mesh);
     needle = NeedleOutput::attach(c, mesh, *system, material->instantaneous_shear_modulus());
+    // The needle's PETSc solvers go before the session does, also when the run fails.
+    const struct ReleaseNeedleSolvers {
+      NeedleOutput* needle;
+      ~ReleaseNeedleSolvers() {
+        if (needle) needle->release_solvers();
+      }
+    } release_needle_solvers{needle.get()};
     record.dofs = system->local_size();
     record.displacement_dofs = system->displacement_dofs();
     record.surfaces = reaction_surfaces(mesh, system->dof_map());

@@ -26,7 +26,8 @@ struct FdErrors {
 
 // A 1 mm block's top face; the contact surface is "z_max". Its faces are perturbed so points
 // penetrate the obstacle by various depths and slide in various directions.
-FdErrors compare_with_finite_differences(std::shared_ptr<const RigidObstacle> obstacle, double t, FrictionLaw law) {
+FdErrors compare_with_finite_differences(std::shared_ptr<const RigidObstacle> obstacle, double t, FrictionLaw law,
+                                         double rate_strengthening = 0.0) {
   const TetMesh mesh = structured_block({0.0, 1e-3}, {0.0, 1e-3}, {0.0, 1e-3});
   ContactParameters parameters;
   parameters.reference_modulus = 1000.0;
@@ -36,6 +37,7 @@ FdErrors compare_with_finite_differences(std::shared_ptr<const RigidObstacle> ob
   // Return map: an allowed elastic slip of 8 µm (0.008 of the 1 mm faces), inside the range of
   // tangential slips the ±20 µm node jitter below gives the quadrature points: some stick, some slip.
   parameters.elastic_slip = 0.008;
+  parameters.rate_strengthening = rate_strengthening;
   const PenaltyContact contact(mesh, "z_max", obstacle, parameters);
   EXPECT_EQ(contact.face_count(), 2u);
   std::mt19937 generator(7);
@@ -129,6 +131,18 @@ TEST(ContactJacobian, ReturnMapMovingPlaneSlipsAndMatchesFiniteDifferences) {
   EXPECT_EQ(errors.slipping_area, errors.contact_area);
   EXPECT_LT(errors.position, 1e-6);
   EXPECT_EQ(errors.velocity_block, 0.0);
+}
+
+// With rate strengthening (-β p v_T added to the Coulomb traction) the return map gains a velocity
+// block and a position part through P(x), w(x) and p(x): both against central differences.
+TEST(ContactJacobian, ReturnMapWithRateStrengtheningMatchesFiniteDifferences) {
+  for (const auto& [obstacle, t] : {std::pair{pressed_sphere(), 0.0}, std::pair{tilted_moving_plane(), 0.5}}) {
+    const FdErrors errors = compare_with_finite_differences(obstacle, t, FrictionLaw::return_map, 5.0);
+    EXPECT_GT(errors.contact_area, 0.0);
+    EXPECT_GT(errors.velocity_block, 0.0);
+    EXPECT_LT(errors.position, 1e-6);
+    EXPECT_LT(errors.velocity, 1e-6);
+  }
 }
 
 }  // namespace

@@ -129,7 +129,8 @@ def vector(row, prefix, suffix):
 def brain_tip(args):
     out = pathlib.Path(args.out)
     result = run(args.exe, args.case, out,
-                 COARSE + ["--set", "motion.duration_s=0.01", "--set", "output.interval_s=0.005"])
+                 COARSE + ["--set", "motion.duration_s=0.01", "--set", "output.interval_s=0.005",
+                           "--set", "needle.deflection_check=true"])
     check(result.returncode == 0, f"run exits 0 ({result.stderr.strip()[-300:]})")
     check(result.stderr.count("run: t = ") == 3, "one progress line per output time on stderr")
     summary = json.load(open(out / "summary.json"))
@@ -158,6 +159,11 @@ def brain_tip(args):
         check(entry["limit"] == limit and entry["max"] == summary["max"][max_key]["value"]
               and entry["pass"] == (entry["max"] <= limit),
               f"thresholds.{name}: limit {entry['limit']}, max {entry['max']:.4g}, pass {entry['pass']}")
+    deflection = needle["deflection_check"]
+    check(deflection["needle_dofs"] > 0 and deflection["elastic_energy_j"] > 0
+          and 0 < deflection["max_deflection_m"] < deflection["smallest_elastic_slip_m"],
+          f"steel tip deflects {deflection['max_deflection_m']:.3e} m under the contact loads, below the elastic "
+          f"slip {deflection['smallest_elastic_slip_m']:.3e} m ({deflection['needle_dofs']} needle dofs)")
     gap_nodes, edge = summary["contact"]["initial_gap_nodes_mm"], summary["contact"]["edge_radius_mm"]
     check(-1e-6 < gap_nodes[0] and gap_nodes[1] < edge,
           f"cavity nodes on the needle at t = 0 (within its {edge} mm edge rounding): gaps {gap_nodes} mm")

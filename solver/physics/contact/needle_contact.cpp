@@ -35,6 +35,7 @@ NeedleContact::NeedleContact(const Case& input, const TetMesh& mesh, double refe
   needle_ = std::make_shared<RigidNeedle>(tip.bevel, needle_motion_from_case(input));
   ContactParameters parameters = contact_parameters_from_case(input, reference_modulus);
   parameters.reference_gap_offset = true;  // the cavity is meshed from the needle's shape
+  smoothing_pressure_ = parameters.penalty_smoothing * reference_modulus;
   contact_ = std::make_shared<PenaltyContact>(mesh, kCavity, needle_, parameters);
   std::map<int, std::pair<double, int>> penalty_sum;  // node -> (sum of face penalties, faces)
   for (std::size_t f = 0; f < contact_->face_count(); ++f)
@@ -66,7 +67,8 @@ NeedleContact::SurfaceFields NeedleContact::surface_fields(double t, const doubl
     Point3 x;
     for (int c = 0; c < 3; ++c) x[c] = X[c] + y[dofs.dof(node, c)];
     const ObstacleProjection p = needle_->project(x, t);
-    out.pressure[node] = node_penalty_[i] * std::max(0.0, -p.gap);
+    out.pressure[node] =
+        normal_pressure(std::max(0.0, -p.gap), node_penalty_[i], smoothing_pressure_ / node_penalty_[i]).pressure;
     const Point3 chi = needle_->from_body(X, t);
     Point3 relative;
     for (int c = 0; c < 3; ++c) relative[c] = x[c] - chi[c];
@@ -76,6 +78,20 @@ NeedleContact::SurfaceFields NeedleContact::surface_fields(double t, const doubl
     out.slip[node] = std::sqrt(slip2);
   }
   return out;
+}
+
+std::vector<Point3> NeedleContact::nodal_loads_in_needle_frame(double t, const double* y, const double* ydot,
+                                                              const mechanics::DofMap& dofs) const {
+  std::vector<double> residual(static_cast<std::size_t>(dofs.dof_count), 0.0);
+  contact_->add_residual(t, y, ydot, dofs, residual.data());
+  const Point3 origin = needle_->to_body({0.0, 0.0, 0.0}, t);
+  std::vector<Point3> loads(mesh_.nodes.size(), Point3{});
+  for (int node : cavity_nodes_) {
+    const Point3 world{residual[dofs.dof(node, 0)], residual[dofs.dof(node, 1)], residual[dofs.dof(node, 2)]};
+    const Point3 moved = needle_->to_body(world, t);  // R⁻¹ (f - d): subtract R⁻¹(-d) to rotate only
+    for (int c = 0; c < 3; ++c) loads[node][c] = moved[c] - origin[c];
+  }
+  return loads;
 }
 
 NeedleContact::InitialGap NeedleContact::initial_gap() const {

@@ -16,7 +16,8 @@
 // M·e_z (opposes the rotation ω when friction drags the tissue).
 // Surface fields, evaluated at each cavity node a with the same law (visualisation; the forces
 // use the quadrature points):
-//   pressure p_a = ε̄_a ⟨-g(x_a)⟩     (ε̄_a: mean penalty of the cavity faces around a),
+//   pressure p_a = p_N(⟨-g(x_a)⟩) of penalty_contact.hpp with ε̄_a, the mean penalty of the cavity
+//            faces around a (and δ_a = s μ₀/ε̄_a),
 //   slip     s_a = |(I - n nᵀ)(x_a - χ(X_a, t))|, χ(X_a, t) = where the needle point that touched
 //            X_a at t = 0 (zero initial gap) is now: the tangential displacement of the tissue
 //            relative to the needle since t = 0 (0 for a tied cavity).
@@ -71,6 +72,12 @@ class NeedleContact {
   };
   SurfaceFields surface_fields(double t, const double* y, const mechanics::DofMap& dofs) const;
 
+  // The force the tissue exerts on the needle at each cavity node, r_a = -∫ N_a t dA₀ (the
+  // contact's residual there), rotated into the needle's body frame (its pose at t = 0); zero at
+  // every other mesh node. The loads of the deformable-needle check (needle_elasticity.hpp).
+  std::vector<Point3> nodal_loads_in_needle_frame(double t, const double* y, const double* ydot,
+                                                   const mechanics::DofMap& dofs) const;
+
   // Gap of the undeformed cavity against the needle at t = 0 at the cavity nodes (which the
   // mesher puts on the shape) and at the face centroids (off it by the faces' interpolation
   // error): zero up to the mesh's geometric accuracy, since both come from one shape.
@@ -85,6 +92,7 @@ class NeedleContact {
   std::shared_ptr<PenaltyContact> contact_;
   std::vector<int> cavity_nodes_;
   std::vector<double> node_penalty_;  // ε̄_a per cavity node (same order)
+  double smoothing_pressure_ = 0.0;   // s μ₀: δ_a = s μ₀ / ε̄_a
 };
 
 }  // namespace needlefem::contact

@@ -76,7 +76,7 @@ struct Tangential {
 };
 
 // Elastic slip g_T = P (x - a) of a point at x tied to the anchor's current position a.
-Point3 elastic_slip(const ObstacleProjection& p, const Point3& position, const Point3& anchor) {
+Point3 slip_from_anchor(const ObstacleProjection& p, const Point3& position, const Point3& anchor) {
   Point3 r, slip;
   for (int i = 0; i < 3; ++i) r[i] = position[i] - anchor[i];
   const double n_r = dot(p.normal, r);
@@ -89,7 +89,7 @@ Point3 elastic_slip(const ObstacleProjection& p, const Point3& position, const P
 Tangential return_map(const ObstacleProjection& p, const Point3& position, const Point3& anchor,
                       const NormalPressure& normal, double mu, double allowed_slip, bool with_jacobian) {
   Tangential out;
-  const Point3 slip = elastic_slip(p, position, anchor);
+  const Point3 slip = slip_from_anchor(p, position, anchor);
   const double size = std::sqrt(dot(slip, slip));
   out.slipping = size > allowed_slip;
   const double reach = out.slipping ? size : allowed_slip;  // max(s₀, |g_T|)
@@ -106,6 +106,30 @@ Tangential return_map(const ObstacleProjection& p, const Point3& position, const
         for (int j = 0; j < 3; ++j) along_slip += slip[i] * slip[j] / (size * size) * D[3 * j + k];
       out.d_position[3 * i + k] =
           mu * normal.stiffness * slip[i] / reach * p.normal[k] - scale * (D[3 * i + k] - along_slip);
+    }
+  return out;
+}
+
+// Rate strengthening of the return map (penalty_contact.hpp): t = -β p_N v_T, v_T = P (v - w).
+Tangential rate_strengthening(const ObstacleProjection& p, const Point3& velocity, const NormalPressure& normal,
+                              double beta, bool with_jacobian) {
+  Tangential out;
+  Point3 relative, slip;
+  for (int i = 0; i < 3; ++i) relative[i] = velocity[i] - p.velocity[i];
+  const double normal_rate = dot(relative, p.normal);
+  for (int i = 0; i < 3; ++i) slip[i] = relative[i] - normal_rate * p.normal[i];
+  for (int i = 0; i < 3; ++i) out.traction[i] = -beta * normal.pressure * slip[i];
+  if (!with_jacobian) return out;
+  // ∂v_T/∂x = -(n·r) G - n (rᵀ G) - P W;  ∂t/∂x = -β p ∂v_T/∂x + β p' v_T nᵀ;  ∂t/∂v = -β p P.
+  const Matrix3 slip_gradient = projected_gradient(p, relative, false);
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < 3; ++k) {
+      double P_W = 0.0;
+      for (int j = 0; j < 3; ++j)
+        P_W += ((i == j ? 1.0 : 0.0) - p.normal[i] * p.normal[j]) * p.velocity_gradient[3 * j + k];
+      out.d_position[3 * i + k] = -beta * normal.pressure * (slip_gradient[3 * i + k] - P_W) +
+                                  beta * normal.stiffness * slip[i] * p.normal[k];
+      out.d_velocity[3 * i + k] = -beta * normal.pressure * ((i == k ? 1.0 : 0.0) - p.normal[i] * p.normal[k]);
     }
   return out;
 }
@@ -158,6 +182,7 @@ ContactParameters contact_parameters_from_case(const Case& input, double referen
   p.penalty_factor = input.real("contact.penalty_factor");
   p.penalty_smoothing = input.real("contact.penalty_smoothing");
   p.elastic_slip = input.real("contact.elastic_slip");
+  p.rate_strengthening = input.real("contact.rate_strengthening_s_per_m");
   p.slip_velocity_regularisation = input.real("contact.slip_velocity_regularisation_mm_per_s") * kMetresPerMm;
   p.reference_modulus = reference_modulus;
   p.friction_tangent =
@@ -230,14 +255,23 @@ FaceTerms PenaltyContact::face_terms(std::size_t face, const double* x, const do
     const Point3& normal = p.normal;
     const NormalPressure normal_law = normal_pressure(-gap, penalty, faces_[face].smoothing_depth);
     const double pressure = normal_law.pressure;
+    Point3 velocity{};
+    for (int a = 0; a < m; ++a)
+      for (int c = 0; c < 3; ++c) velocity[c] += point.shape[a] * v[3 * a + c];
     Tangential tangential;
     if (parameters_.friction_law == FrictionLaw::return_map) {
       tangential = return_map(p, position, obstacle_->from_body(point.anchor, t), normal_law, mu,
                               faces_[face].elastic_slip, with_jacobian);
+      if (parameters_.rate_strengthening > 0.0) {
+        const Tangential viscous =
+            rate_strengthening(p, velocity, normal_law, parameters_.rate_strengthening, with_jacobian);
+        for (int i = 0; i < 3; ++i) tangential.traction[i] += viscous.traction[i];
+        for (int k = 0; k < 9; ++k) {
+          tangential.d_position[k] += viscous.d_position[k];
+          tangential.d_velocity[k] += viscous.d_velocity[k];
+        }
+      }
     } else {
-      Point3 velocity{};
-      for (int a = 0; a < m; ++a)
-        for (int c = 0; c < 3; ++c) velocity[c] += point.shape[a] * v[3 * a + c];
       tangential = velocity_law(p, velocity, normal_law, mu, parameters_.slip_velocity_regularisation,
                                 parameters_.friction_tangent, with_jacobian);
     }
@@ -293,7 +327,7 @@ void PenaltyContact::accept_step(double t, const double* y, const double* ydot, 
       const double gap = p.gap - point.gap_offset;
       Point3 anchor = position;  // out of contact: re-anchor where the point is
       if (gap <= 0.0) {
-        const Point3 slip = elastic_slip(p, position, obstacle_->from_body(point.anchor, t));
+        const Point3 slip = slip_from_anchor(p, position, obstacle_->from_body(point.anchor, t));
         const double size = std::sqrt(dot(slip, slip)), allowed = faces_[f].elastic_slip;
         const double kept = size > allowed ? allowed / size : 1.0;  // a slipping point drags its anchor along
         for (int i = 0; i < 3; ++i) anchor[i] -= kept * slip[i];
