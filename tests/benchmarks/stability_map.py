@@ -18,7 +18,8 @@
    2 / omega_max on the block and then evaluated on the paper's 0.4 mm brain-tip mesh (h_min =
    smallest corner-tet altitude of the tissue) and compared with the step sizes IDA takes there.
 4. Contact: the brain-tip run (1.0 mm core, 0.02 s, adaptive IDA) over
-   contact.penalty_factor x contact.slip_velocity_regularisation_mm_per_s, each on three mesh
+   contact.penalty_factor x contact.elastic_slip (the return-map friction's allowed elastic slip per
+   face size, whose stick stiffness mu p / s0 is the friction's stiffness), each on three mesh
    files (three gmsh meshings of the same case, which differ at round-off); outcome completed or
    failed (IDA_CONV_FAIL: Newton failures, step collapse), with the time reached.
 5. Newton stop: the same brain-tip run over integration.newton_convergence_coefficient (IDA's
@@ -50,7 +51,7 @@ MU = 1052.0            # Pa, Miller's instantaneous shear modulus (2 (C10 + C01)
 BULK = key_default(args.exe, "material.bulk_modulus_pa")   # Pa
 DENSITY = 1040.0       # kg/m^3
 DEFAULT_PENALTY = key_default(args.exe, "contact.penalty_factor")
-DEFAULT_SLIP = key_default(args.exe, "contact.slip_velocity_regularisation_mm_per_s")
+DEFAULT_SLIP = key_default(args.exe, "contact.elastic_slip")
 DEFAULT_NEWTON_COEFFICIENT = key_default(args.exe, "integration.newton_convergence_coefficient")
 BRAIN = {"tissue.core_element_mm": 1.0, "motion.duration_s": 0.02, "output.interval_s": 0.005}
 report = {"benchmark": "stability map", "case": str(args.case.relative_to(ROOT)), "binary": binary_identity(args.exe),
@@ -241,28 +242,28 @@ print(f"explicit: c = {wave_speed:.1f} m/s, block dt_crit = {critical:.3e} s (CF
       f" paper mesh h_min = {paper_altitude * 1e3:.4f} mm -> CFL dt = {paper_altitude / wave_speed:.3e} s;"
       f" IDA mean step {ida_mean_step}", flush=True)
 
-# 4. Contact penalty and friction regularisation --------------------------------------------
+# 4. Contact penalty and friction stiffness (elastic slip) -------------------------------------
 PENALTIES = [10, 100, 1000, 10000]
-SLIPS = [0.001, 0.01, 0.1]
+SLIPS = [0.0005, 0.005, 0.05]
 contact = []
 for penalty in PENALTIES:
     for slip in SLIPS:
         outcomes = []
         for index, mesh_file in enumerate(REALISATIONS):
-            record = run_case(args.case, args.out / "contact" / f"{point_name({'c': penalty, 'eps_v': slip})}__mesh{index}",
+            record = run_case(args.case, args.out / "contact" / f"{point_name({'c': penalty, 'elastic_slip': slip})}__mesh{index}",
                               {**BRAIN, "scene.mesh_file": mesh_file, "contact.penalty_factor": penalty,
-                               "contact.slip_velocity_regularisation_mm_per_s": slip}, exe=args.exe, timeout_s=args.timeout)
+                               "contact.elastic_slip": slip}, exe=args.exe, timeout_s=args.timeout)
             solver = record.get("solver") or {}
             outcomes.append({"status": record["status"], "time_reached_s": record.get("time_reached_s"),
                              "steps": solver.get("steps"), "newton_convergence_failures": solver.get("newton_convergence_failures"),
                              "cpu_s": record["cpu_s"], "error": record.get("error")})
         completed = sum(o["status"] == "completed" for o in outcomes)
-        contact.append({"penalty_factor": penalty, "slip_regularisation_mm_per_s": slip, "completed": completed,
+        contact.append({"penalty_factor": penalty, "elastic_slip": slip, "completed": completed,
                         "runs": outcomes})
-        print(f"contact c = {penalty:g}, eps_v = {slip:g}: {completed}/{len(outcomes)} completed, t reached "
+        print(f"contact c = {penalty:g}, elastic slip = {slip:g}: {completed}/{len(outcomes)} completed, t reached "
               f"{[o['time_reached_s'] for o in outcomes]}", flush=True)
 report["contact"] = {"rows": contact, "meshes": REALISATIONS,
-                     "defaults": {"penalty_factor": DEFAULT_PENALTY, "slip_regularisation_mm_per_s": DEFAULT_SLIP}}
+                     "defaults": {"penalty_factor": DEFAULT_PENALTY, "elastic_slip": DEFAULT_SLIP}}
 
 # 5. Newton convergence coefficient -----------------------------------------------------------
 COEFFICIENTS = [0.01, 0.03, 0.1, 0.33]
@@ -341,16 +342,16 @@ axis.legend(fontsize=8, loc="lower right")
 axis = axes[1, 1]
 colours = {3: "tab:green", 2: "yellowgreen", 1: "tab:orange", 0: "tab:red"}
 for row in contact:
-    axis.scatter(row["slip_regularisation_mm_per_s"], row["penalty_factor"], s=90, color=colours[row["completed"]],
+    axis.scatter(row["elastic_slip"], row["penalty_factor"], s=90, color=colours[row["completed"]],
                  marker="o" if row["completed"] == len(REALISATIONS) else "X")
     failed = [o["time_reached_s"] for o in row["runs"] if o["status"] != "completed"]
     if failed:
-        axis.annotate("/".join(f"{t * 1e3:.0f}" for t in failed) + " ms", (row["slip_regularisation_mm_per_s"],
+        axis.annotate("/".join(f"{t * 1e3:.0f}" for t in failed) + " ms", (row["elastic_slip"],
                       row["penalty_factor"]), fontsize=7, xytext=(6, -11), textcoords="offset points")
 axis.scatter(DEFAULT_SLIP, DEFAULT_PENALTY, s=320, facecolors="none", edgecolors="black", linewidths=1.5)
 axis.set_xscale("log")
 axis.set_yscale("log")
-axis.set_xlabel("friction regularisation eps_v, mm/s")
+axis.set_xlabel("elastic slip s0 / h_face (stick stiffness mu p / s0)")
 axis.set_ylabel("penalty factor c")
 axis.set_title("4. contact (1.0 mm core, 0.02 s, 3 meshes): runs completed green 3/3 ... red 0/3\n"
                "(last output time reached by failed runs); black ring: the defaults", fontsize=9)
