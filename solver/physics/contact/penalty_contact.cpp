@@ -75,13 +75,32 @@ struct Tangential {
   bool slipping = false;
 };
 
-// Elastic slip g_T = P (x - a) of a point at x tied to the anchor's current position a.
-Point3 slip_from_anchor(const ObstacleProjection& p, const Point3& position, const Point3& anchor) {
-  Point3 r, slip;
-  for (int i = 0; i < 3; ++i) r[i] = position[i] - anchor[i];
-  const double n_r = dot(p.normal, r);
-  for (int i = 0; i < 3; ++i) slip[i] = r[i] - n_r * p.normal[i];
-  return slip;
+Point3 difference(const Point3& a, const Point3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+
+// P r = r - (n·r) n, the part of r tangent to the obstacle.
+Point3 tangential_part(const Point3& n, const Point3& r) {
+  const double n_r = dot(n, r);
+  return {r[0] - n_r * n[0], r[1] - n_r * n[1], r[2] - n_r * n[2]};
+}
+
+// Slip velocity of a tissue point moving at v over the obstacle: r = v - w, v_T = P r, and (with
+// the gradient) ∂v_T/∂x = -(n·r) G - n (rᵀ G) - P W. Shared by the velocity law and the rate
+// strengthening.
+struct SlipVelocity {
+  Point3 relative{}, tangential{};
+  Matrix3 gradient{};
+};
+SlipVelocity slip_velocity(const ObstacleProjection& p, const Point3& velocity, bool with_gradient) {
+  SlipVelocity out;
+  out.relative = difference(velocity, p.velocity);
+  out.tangential = tangential_part(p.normal, out.relative);
+  if (!with_gradient) return out;
+  out.gradient = projected_gradient(p, out.relative, false);
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < 3; ++k)
+      for (int j = 0; j < 3; ++j)
+        out.gradient[3 * i + k] -= ((i == j ? 1.0 : 0.0) - p.normal[i] * p.normal[j]) * p.velocity_gradient[3 * j + k];
+  return out;
 }
 
 // Return map with the allowed elastic slip s₀ (penalty_contact.hpp):
@@ -89,15 +108,13 @@ Point3 slip_from_anchor(const ObstacleProjection& p, const Point3& position, con
 Tangential return_map(const ObstacleProjection& p, const Point3& position, const Point3& anchor,
                       const NormalPressure& normal, double mu, double allowed_slip, bool with_jacobian) {
   Tangential out;
-  const Point3 slip = slip_from_anchor(p, position, anchor);
+  const Point3 r = difference(position, anchor), slip = tangential_part(p.normal, r);
   const double size = std::sqrt(dot(slip, slip));
   out.slipping = size > allowed_slip;
   const double reach = out.slipping ? size : allowed_slip;  // max(s₀, |g_T|)
   const double scale = mu * normal.pressure / reach;
   for (int i = 0; i < 3; ++i) out.traction[i] = -scale * slip[i];
   if (!with_jacobian) return out;
-  Point3 r;
-  for (int i = 0; i < 3; ++i) r[i] = position[i] - anchor[i];
   const Matrix3 D = projected_gradient(p, r, true);
   for (int i = 0; i < 3; ++i)
     for (int k = 0; k < 3; ++k) {
@@ -110,28 +127,19 @@ Tangential return_map(const ObstacleProjection& p, const Point3& position, const
   return out;
 }
 
-// Rate strengthening of the return map (penalty_contact.hpp): t = -β p_N v_T, v_T = P (v - w).
-Tangential rate_strengthening(const ObstacleProjection& p, const Point3& velocity, const NormalPressure& normal,
-                              double beta, bool with_jacobian) {
-  Tangential out;
-  Point3 relative, slip;
-  for (int i = 0; i < 3; ++i) relative[i] = velocity[i] - p.velocity[i];
-  const double normal_rate = dot(relative, p.normal);
-  for (int i = 0; i < 3; ++i) slip[i] = relative[i] - normal_rate * p.normal[i];
-  for (int i = 0; i < 3; ++i) out.traction[i] = -beta * normal.pressure * slip[i];
-  if (!with_jacobian) return out;
-  // ∂v_T/∂x = -(n·r) G - n (rᵀ G) - P W;  ∂t/∂x = -β p ∂v_T/∂x + β p' v_T nᵀ;  ∂t/∂v = -β p P.
-  const Matrix3 slip_gradient = projected_gradient(p, relative, false);
+// Rate strengthening of the return map (penalty_contact.hpp), added to `out`: t = -β p_N v_T,
+// ∂t/∂x = -β p_N ∂v_T/∂x + β p' v_T nᵀ, ∂t/∂v = -β p_N P.
+void add_rate_strengthening(const ObstacleProjection& p, const Point3& velocity, const NormalPressure& normal,
+                            double beta, bool with_jacobian, Tangential& out) {
+  const SlipVelocity slip = slip_velocity(p, velocity, with_jacobian);
+  for (int i = 0; i < 3; ++i) out.traction[i] -= beta * normal.pressure * slip.tangential[i];
+  if (!with_jacobian) return;
   for (int i = 0; i < 3; ++i)
     for (int k = 0; k < 3; ++k) {
-      double P_W = 0.0;
-      for (int j = 0; j < 3; ++j)
-        P_W += ((i == j ? 1.0 : 0.0) - p.normal[i] * p.normal[j]) * p.velocity_gradient[3 * j + k];
-      out.d_position[3 * i + k] = -beta * normal.pressure * (slip_gradient[3 * i + k] - P_W) +
-                                  beta * normal.stiffness * slip[i] * p.normal[k];
-      out.d_velocity[3 * i + k] = -beta * normal.pressure * ((i == k ? 1.0 : 0.0) - p.normal[i] * p.normal[k]);
+      out.d_position[3 * i + k] += -beta * normal.pressure * slip.gradient[3 * i + k] +
+                                   beta * normal.stiffness * slip.tangential[i] * p.normal[k];
+      out.d_velocity[3 * i + k] += -beta * normal.pressure * ((i == k ? 1.0 : 0.0) - p.normal[i] * p.normal[k]);
     }
-  return out;
 }
 
 // Velocity-regularised Coulomb law (penalty_contact.hpp); tangent per `tangent`.
@@ -139,23 +147,19 @@ Tangential velocity_law(const ObstacleProjection& p, const Point3& velocity, con
                         double eps_v, FrictionTangent tangent, bool with_jacobian) {
   const double pressure = normal.pressure, normal_stiffness = normal.stiffness;
   Tangential out;
-  Point3 relative, slip;
-  for (int i = 0; i < 3; ++i) relative[i] = velocity[i] - p.velocity[i];
-  const double normal_rate = dot(relative, p.normal);
-  for (int i = 0; i < 3; ++i) slip[i] = relative[i] - normal_rate * p.normal[i];
+  const SlipVelocity slip_rate = slip_velocity(p, velocity, with_jacobian);
+  const Point3& slip = slip_rate.tangential;
   const double s = std::sqrt(dot(slip, slip) + eps_v * eps_v);
   out.slipping = dot(slip, slip) > eps_v * eps_v;
   for (int i = 0; i < 3; ++i) out.traction[i] = -mu * pressure * slip[i] / s;
   if (!with_jacobian) return out;
-  // T = (μ p / s)(I - v_T v_Tᵀ / s²); ∂v_T/∂x = -(n·r) G - n (rᵀ G) - P W.
+  // T = (μ p / s)(I - v_T v_Tᵀ / s²).
   const double slip_curvature = tangent == FrictionTangent::consistent ? 1.0 : 0.0;
-  Matrix3 T{}, slip_gradient = projected_gradient(p, relative, false);
+  const Matrix3& slip_gradient = slip_rate.gradient;
+  Matrix3 T{};
   for (int i = 0; i < 3; ++i)
-    for (int k = 0; k < 3; ++k) {
+    for (int k = 0; k < 3; ++k)
       T[3 * i + k] = mu * pressure / s * ((i == k ? 1.0 : 0.0) - slip_curvature * slip[i] * slip[k] / (s * s));
-      for (int j = 0; j < 3; ++j)
-        slip_gradient[3 * i + k] -= ((i == j ? 1.0 : 0.0) - p.normal[i] * p.normal[j]) * p.velocity_gradient[3 * j + k];
-    }
   for (int i = 0; i < 3; ++i)
     for (int k = 0; k < 3; ++k) {
       double T_slip = 0.0, T_P = 0.0;
@@ -262,15 +266,8 @@ FaceTerms PenaltyContact::face_terms(std::size_t face, const double* x, const do
     if (parameters_.friction_law == FrictionLaw::return_map) {
       tangential = return_map(p, position, obstacle_->from_body(point.anchor, t), normal_law, mu,
                               faces_[face].elastic_slip, with_jacobian);
-      if (parameters_.rate_strengthening > 0.0) {
-        const Tangential viscous =
-            rate_strengthening(p, velocity, normal_law, parameters_.rate_strengthening, with_jacobian);
-        for (int i = 0; i < 3; ++i) tangential.traction[i] += viscous.traction[i];
-        for (int k = 0; k < 9; ++k) {
-          tangential.d_position[k] += viscous.d_position[k];
-          tangential.d_velocity[k] += viscous.d_velocity[k];
-        }
-      }
+      if (parameters_.rate_strengthening > 0.0)
+        add_rate_strengthening(p, velocity, normal_law, parameters_.rate_strengthening, with_jacobian, tangential);
     } else {
       tangential = velocity_law(p, velocity, normal_law, mu, parameters_.slip_velocity_regularisation,
                                 parameters_.friction_tangent, with_jacobian);
@@ -327,7 +324,7 @@ void PenaltyContact::accept_step(double t, const double* y, const double* ydot, 
       const double gap = p.gap - point.gap_offset;
       Point3 anchor = position;  // out of contact: re-anchor where the point is
       if (gap <= 0.0) {
-        const Point3 slip = slip_from_anchor(p, position, obstacle_->from_body(point.anchor, t));
+        const Point3 slip = tangential_part(p.normal, difference(position, obstacle_->from_body(point.anchor, t)));
         const double size = std::sqrt(dot(slip, slip)), allowed = faces_[f].elastic_slip;
         const double kept = size > allowed ? allowed / size : 1.0;  // a slipping point drags its anchor along
         for (int i = 0; i < 3; ++i) anchor[i] -= kept * slip[i];
