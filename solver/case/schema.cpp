@@ -195,6 +195,9 @@ std::vector<KeySpec> build_schema() {
              "Newton linear solves: 'modified' reuses the factored Newton matrix; 'krylov' runs GMRES on the "
              "current Jacobian (difference quotients) preconditioned by the rarely refreshed factorisation"),
       integer("integration.krylov_dimension", 20, 1, 500, "GMRES basis size of integration.newton = krylov"),
+      real("integration.krylov_tolerance", 0.05, 1e-6, 1.0,
+           "integration.newton = krylov: GMRES stops when its residual is below this fraction of the Newton "
+           "test's tolerance (IDA's epslin)"),
       real("integration.newton_convergence_coefficient", 0.33, 0.0, 1.0,
            "Newton stops when its error estimate is below this fraction of the error-test tolerance "
            "(IDA's epcon). Uniaxial block at K/mu ~ 1e4: stress error 6e-3 at 0.33, 1e-4 at 0.01; "
@@ -238,6 +241,10 @@ std::vector<KeySpec> build_schema() {
       real("contact.penalty_smoothing", 0.25, 0.0, 100.0,
            "s: the normal penalty is smoothed (C1, quadratic) over the first s h_face / c of penetration, "
            "i.e. below the pressure s mu0 / 2; 0 gives the plain kink (physics/contact/penalty_contact.hpp)"),
+      real("contact.edge_rounding", 0.25, 1e-3, 0.999,
+           "f: the rigid bevel needle's bevel-cylinder and fillet-cylinder edges are rounded with the radius "
+           "min(fillet, f r) so its normal is continuous where the tissue presses on them "
+           "(physics/contact/needle_obstacle.hpp)"),
       real("contact.elastic_slip", 0.005, 0.0, 1.0,
            "Return-map friction: the elastic slip s0 a sticking point may make before it slides, per contact "
            "face size (Abaqus's default 0.005); the stick stiffness is mu p / s0"),

@@ -177,6 +177,7 @@ IdaIntegrator::IdaIntegrator(DaeSystem& system, const IdaOptions& options, doubl
     if (!m.linear_solver) throw std::runtime_error("creating IDA's GMRES solver failed");
     ida_check(IDASetLinearSolver(m.ida, m.linear_solver, nullptr), "IDASetLinearSolver");
     ida_check(IDASetPreconditioner(m.ida, preconditioner_setup, preconditioner_solve), "IDASetPreconditioner");
+    ida_check(IDASetEpsLin(m.ida, options.krylov_tolerance), "IDASetEpsLin");
   } else {
     m.jacobian = make_jacobian_handle(m.context);
     m.linear_solver = make_dae_linear_solver(m.context, m.callbacks);

@@ -52,6 +52,9 @@ struct IdaOptions {
   // kinks stall Newton at such tight values, hence IDA's default stays the default.
   double newton_convergence_coefficient = 0.33;
   int krylov_dimension = 20;       // GMRES basis size (krylov)
+  // GMRES (krylov) stops when its residual is below this fraction of the Newton test's
+  // tolerance (IDA's epslin, default 0.05).
+  double krylov_tolerance = 0.05;
   // IDA refreshes the Newton matrix when cj = alpha/h has changed by more than this fraction
   // since the last setup (IDA's default 0.25). The tissue's matrix barely depends on cj (only
   // through the condensed viscous factor 1 - Σ g_i/(1 + cj τ_i), mechanics_system.hpp), so a

@@ -22,6 +22,7 @@ const double alpha = 20.0 * kPi / 180.0;
 BevelTip bevel_tip() { return {r, alpha, tau, shaft}; }
 BevelTip rounded_tip() { return {r, alpha, r, shaft}; }
 const NeedleMotion kMotion{1e-3, kPi, 0.1, 0.0};  // 1 mm/s, 180 deg/s for 0.1 s
+constexpr double kEdgeRounding = 0.25;              // the case default: edge radius r/4
 
 Point3 add(const Point3& a, const Point3& b, double s = 1.0) { return {a[0] + s * b[0], a[1] + s * b[1], a[2] + s * b[2]}; }
 Point3 unit(const Point3& a) {
@@ -58,8 +59,8 @@ std::vector<SurfacePoint> bevel_surface_points(double rho) {
 }
 
 TEST(NeedleObstacle, GapOfPointsAtKnownDistancesFromEachFace) {
-  const RigidNeedle needle(bevel_tip(), kMotion);
-  EXPECT_DOUBLE_EQ(needle.edge_radius(), r / 10);
+  const RigidNeedle needle(bevel_tip(), kMotion, kEdgeRounding);
+  EXPECT_DOUBLE_EQ(needle.edge_radius(), kEdgeRounding * r);
   for (const auto& s : bevel_surface_points(needle.edge_radius()))
     for (double d : {-2e-6, 0.0, 1e-6, 2e-5}) {
       const ObstacleProjection p = needle.project_in_needle_frame(add(s.x, s.normal, d));
@@ -79,7 +80,7 @@ TEST(NeedleObstacle, GapOfPointsAtKnownDistancesFromEachFace) {
 // Across the edge's bisector, at a penetration shallower than the edge radius, the normal turns
 // smoothly from one face's to the other's (a sharp edge would switch it in one jump).
 TEST(NeedleObstacle, NormalIsContinuousAcrossTheEdge) {
-  const RigidNeedle needle(bevel_tip(), kMotion);
+  const RigidNeedle needle(bevel_tip(), kMotion, kEdgeRounding);
   const double rho = needle.edge_radius();
   const auto edge = bevel_surface_points(rho)[3];
   const Point3 bevel_normal{std::cos(alpha), 0.0, std::sin(alpha)}, cylinder_normal{std::cos(0.4), std::sin(0.4), 0.0};
@@ -95,7 +96,7 @@ TEST(NeedleObstacle, NormalIsContinuousAcrossTheEdge) {
 }
 
 TEST(NeedleObstacle, RoundedTipIsCapsule) {
-  const RigidNeedle needle(rounded_tip(), kMotion);
+  const RigidNeedle needle(rounded_tip(), kMotion, kEdgeRounding);
   const Point3 dir = unit({0.3, -0.4, 0.8});
   for (double d : {-1e-5, 0.0, 3e-5}) {
     const ObstacleProjection cap = needle.project_in_needle_frame(add({0.0, 0.0, shaft}, dir, r + d));
@@ -126,7 +127,7 @@ void expect_derivatives(const RigidNeedle& needle, const Point3& x, const char* 
 }
 
 TEST(NeedleObstacle, NormalAndItsGradientAreDerivativesOfTheGap) {
-  const RigidNeedle needle(bevel_tip(), kMotion);
+  const RigidNeedle needle(bevel_tip(), kMotion, kEdgeRounding);
   for (const auto& s : bevel_surface_points(needle.edge_radius()))
     for (double d : {-3e-6, 4e-6, 5e-5}) expect_derivatives(needle, add(s.x, s.normal, d), s.face);
   // Outside the edge off the bisector (still in its normal wedge): the closest point slides along
@@ -143,13 +144,13 @@ TEST(NeedleObstacle, NormalAndItsGradientAreDerivativesOfTheGap) {
   const Point3 fillet_edge{x, (r - rho) * std::sin(theta), z};
   EXPECT_NEAR(needle.project_in_needle_frame(add(fillet_edge, bisector, 3e-5)).gap, 3e-5 - rho, 1e-15);
   expect_derivatives(needle, add(add(fillet_edge, bisector, 3e-5), {0.0, 0.0, 1.0}, 3e-6), "fillet edge");
-  const RigidNeedle rounded(rounded_tip(), kMotion);
+  const RigidNeedle rounded(rounded_tip(), kMotion, kEdgeRounding);
   expect_derivatives(rounded, {1e-4, -2e-4, shaft + 0.5e-3}, "hemisphere");
   expect_derivatives(rounded, {1e-4, -5.5e-4, -0.1e-3}, "rounded shaft");
 }
 
 TEST(NeedleObstacle, PoseVelocityAndItsGradientMatchTheMotion) {
-  const RigidNeedle needle(bevel_tip(), kMotion);
+  const RigidNeedle needle(bevel_tip(), kMotion, kEdgeRounding);
   const Point3 x{0.3e-3, 0.45e-3, 0.4e-3};
   const double t = 0.03, dt = 1e-7;
   const ObstacleProjection p = needle.project(x, t);
@@ -199,7 +200,7 @@ TEST(NeedleObstacle, StartRampIsSmoothAndTheVelocityFollowsIt) {
   EXPECT_NEAR(ramped.elapsed(0.1), 0.1 - 0.005, 1e-15);
   EXPECT_EQ(ramped.speed_fraction(0.11), 0.0);
 
-  const RigidNeedle needle(bevel_tip(), ramped);
+  const RigidNeedle needle(bevel_tip(), ramped, kEdgeRounding);
   const Point3 X{0.3e-3, 0.45e-3, 0.4e-3};
   const double t = 0.004;
   const Point3 x = needle.from_body(X, t);

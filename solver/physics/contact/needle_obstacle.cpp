@@ -17,8 +17,6 @@ constexpr double kPi = std::numbers::pi;
 constexpr int kEdgeSamples = 64;
 constexpr int kGoldenIterations = 64;  // bracket 2 (2π/64) 0.618^64 ≈ 1e-14 rad
 constexpr int kPolishIterations = 3;
-// Edge radius of the bevel tip's bevel-cylinder and fillet-cylinder edges, per needle radius.
-constexpr double kEdgeRadiusPerRadius = 0.1;
 // Edge parameters this close to ±π are the kink where the two edge branches meet.
 constexpr double kKinkTolerance = 1e-6;
 // Relative tolerance (of r) for "the projection onto one surface lies in the other set".
@@ -75,13 +73,15 @@ ObstacleProjection from(const Candidate& c) {
 
 }  // namespace
 
-RigidNeedle::RigidNeedle(const BevelTip& tip, const NeedleMotion& motion)
+RigidNeedle::RigidNeedle(const BevelTip& tip, const NeedleMotion& motion, double edge_rounding)
     : tip_(tip),
       motion_(motion),
-      edge_radius_(tip.rounded() ? 0.0 : std::min(tip.fillet, kEdgeRadiusPerRadius * tip.radius)) {
+      edge_radius_(tip.rounded() ? 0.0 : std::min(tip.fillet, edge_rounding * tip.radius)) {
   if (!(tip.radius > 0.0) || !(tip.shaft >= 0.0) || !(tip.fillet >= 0.0) ||
       (!tip.rounded() && !(tip.bevel_rad > 0.0 && tip.bevel_rad <= kPi / 2)))
     throw std::invalid_argument("RigidNeedle: needs radius > 0, shaft >= 0, fillet >= 0, bevel in (0, 90] deg");
+  if (!(edge_rounding > 0.0 && edge_rounding < 1.0))
+    throw std::invalid_argument("RigidNeedle: the edge rounding (edge radius per needle radius) must lie in (0, 1)");
   const auto violations = tip.violations();
   if (!violations.empty()) throw std::invalid_argument("RigidNeedle: " + violations.front().message);
   // Every face moved inwards by the edge radius ρ: radius and fillet shrink by ρ, the bevel line
