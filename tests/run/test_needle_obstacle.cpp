@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 
 #include "physics/contact/needle_obstacle.hpp"
 
@@ -56,6 +57,16 @@ std::vector<SurfacePoint> bevel_surface_points(double rho) {
           // On the rounded edge: rho from the core's edge along the bisector of the face normals.
           {"edge", add(edge_centre, unit(add(bevel_normal, cylinder_normal)), rho),
            unit(add(bevel_normal, cylinder_normal))}};
+}
+
+// The edge radius is f r, capped by the fillet (the core's fillet would go negative), and the
+// rounded tip has no edge; f outside (0, 1) would leave no core.
+TEST(NeedleObstacle, EdgeRadiusIsTheRoundingTimesTheRadiusCappedByTheFillet) {
+  EXPECT_DOUBLE_EQ(RigidNeedle(bevel_tip(), kMotion, 0.1).edge_radius(), 0.1 * r);
+  EXPECT_DOUBLE_EQ(RigidNeedle(bevel_tip(), kMotion, 0.9).edge_radius(), tau);
+  EXPECT_DOUBLE_EQ(RigidNeedle(rounded_tip(), kMotion, kEdgeRounding).edge_radius(), 0.0);
+  EXPECT_THROW(RigidNeedle(bevel_tip(), kMotion, 0.0), std::invalid_argument);
+  EXPECT_THROW(RigidNeedle(bevel_tip(), kMotion, 1.0), std::invalid_argument);
 }
 
 TEST(NeedleObstacle, GapOfPointsAtKnownDistancesFromEachFace) {
