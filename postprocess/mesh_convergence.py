@@ -1,18 +1,19 @@
 #!/usr/bin/python3
-"""Observed order and Richardson extrapolation of a sweep's maxima over three mesh sizes.
+"""Observed order and Richardson extrapolation of a sweep's maxima over three or more mesh sizes.
 
 Reads SWEEP_DIR/sweep.csv of a `needlefem sweep` whose only varying key is the core element size
 (cases/sweeps/mesh_convergence.toml) and prints, and writes as SWEEP_DIR/convergence.json and
 .csv, for each maximum Q (log strain, strain rate, von Mises stress, max principal stress, needle
-force and torque):
+force and torque) and each three consecutive sizes:
 
-  h1 > h2 > h3 with a common ratio r = h1/h2 = h2/h3 (checked to 2 %),
+  h1 > h2 > h3 with a common ratio r = h1/h2 = h2/h3 (all sizes checked to 2 %),
   observed order   p = ln((Q1 - Q2)/(Q2 - Q3)) / ln r           (needs monotone convergence),
   Richardson       Q* = Q3 + (Q3 - Q2)/(r^p - 1),
   distance of each mesh from it  (Q_i - Q*)/Q*.
 
 Oscillating or stagnating differences (Q1 - Q2 and Q2 - Q3 of opposite signs, or a ratio that
 gives p <= 0) have no order: the row says so and gives the spread of the three values instead.
+convergence.json's "quantities" holds the three finest sizes; "triples" every consecutive three.
 
 usage: /usr/bin/python3 postprocess/mesh_convergence.py SWEEP_DIR [--key tissue.core_element_mm]
 """
@@ -60,31 +61,40 @@ def main():
     if args.key not in (rows[0] if rows else {}):
         sys.exit(f"{path}: column '{args.key}' missing or no completed points")
     rows.sort(key=lambda r: -float(r[args.key]))
-    if len(rows) != 3:
-        sys.exit(f"{path}: needs exactly three completed mesh sizes, found {len(rows)}")
+    if len(rows) < 3:
+        sys.exit(f"{path}: needs at least three completed mesh sizes, found {len(rows)}")
     h = [float(r[args.key]) for r in rows]
-    if abs((h[0] / h[1]) / (h[1] / h[2]) - 1.0) > 0.02:
+    ratios = [h[i] / h[i + 1] for i in range(len(h) - 1)]
+    if any(abs(ratio / ratios[0] - 1.0) > 0.02 for ratio in ratios):
         sys.exit(f"{path}: the sizes {h} do not have a common refinement ratio")
-    result = {"sizes_mm": h, "ratio": h[0] / h[1], "dofs": [int(r["dofs"]) for r in rows],
-              "wall_s": [float(r["wall_s"]) for r in rows], "quantities": {}}
-    print(f"core sizes {h} mm (ratio {h[0] / h[1]:.3f}), dofs {result['dofs']}, wall {result['wall_s']} s")
+    result = {"sizes_mm": h, "ratio": ratios[0], "dofs": [int(r["dofs"]) for r in rows],
+              "wall_s": [float(r["wall_s"]) for r in rows], "quantities": {}, "triples": []}
+    print(f"core sizes {h} mm (ratio {ratios[0]:.3f}), dofs {result['dofs']}, wall {result['wall_s']} s")
     table = []
-    for column, label in QUANTITIES.items():
-        if not all(r.get(column) for r in rows):
-            continue
-        q = [abs(float(r[column])) for r in rows]
-        row = richardson(h, q)
-        result["quantities"][column] = row
-        if row["order"] is None:
-            print(f"{label:28s} {q[0]:.5g} {q[1]:.5g} {q[2]:.5g}  {row['note']}; spread {100 * row['spread']:.1f} %")
-        else:
-            print(f"{label:28s} {q[0]:.5g} {q[1]:.5g} {q[2]:.5g}  order {row['order']:.2f}, Richardson "
-                  f"{row['converged']:.5g}, {h[0]} mm is {100 * row['distance'][0]:+.1f} % from it")
-        table.append([label] + q + [row["order"], row["converged"], row["distance"][0] if row["order"] else None])
+    for first in range(len(h) - 2):
+        sizes = h[first:first + 3]
+        triple = {"sizes_mm": sizes, "quantities": {}}
+        print(f"sizes {sizes} mm:")
+        for column, label in QUANTITIES.items():
+            if not all(r.get(column) for r in rows):
+                continue
+            q = [abs(float(r[column])) for r in rows[first:first + 3]]
+            row = richardson(sizes, q)
+            triple["quantities"][column] = row
+            if row["order"] is None:
+                print(f"  {label:28s} {q[0]:.5g} {q[1]:.5g} {q[2]:.5g}  {row['note']}; spread {100 * row['spread']:.1f} %")
+            else:
+                print(f"  {label:28s} {q[0]:.5g} {q[1]:.5g} {q[2]:.5g}  order {row['order']:.2f}, Richardson "
+                      f"{row['converged']:.5g}, {sizes[0]} mm is {100 * row['distance'][0]:+.1f} % from it")
+            table.append([label] + sizes + q + [row["order"], row["converged"],
+                                                row["distance"][0] if row["order"] else None])
+        result["triples"].append(triple)
+    result["quantities"] = result["triples"][-1]["quantities"]
     (args.sweep_dir / "convergence.json").write_text(json.dumps(result, indent=2))
     with (args.sweep_dir / "convergence.csv").open("w", newline="") as f:
         writer = csv.writer(f)
-        writer.writerow(["quantity"] + [f"h={v}mm" for v in h] + ["order", "richardson", f"distance_of_{h[0]}mm"])
+        writer.writerow(["quantity", "h1_mm", "h2_mm", "h3_mm", "q1", "q2", "q3", "order", "richardson",
+                         "distance_of_h1"])
         writer.writerows(table)
 
 
