@@ -8,7 +8,7 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 build_dir=${NEEDLEFEM_BUILD_DIR:-$root/build}
 
 core_packages=(build-essential cmake pkg-config petsc-dev libsundials-dev libmetis-dev libgmsh-dev
-  libopenblas0-serial libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libfmt-dev libgtest-dev)
+  libopenblas0-pthread libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libfmt-dev libgtest-dev)
 test_packages=(python3-paraview python3-h5py python3-numpy python3-matplotlib xvfb xauth)
 
 packages=("${core_packages[@]}")

@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <csignal>
@@ -46,16 +47,25 @@ LauncherRank launcher_rank() {
 }
 
 // The environment for children: under a launcher, without its variables (they would make the
-// child's MPI_Init join the launcher's job instead of starting a singleton).
-std::vector<std::string> child_environment(bool launched) {
+// child's MPI_Init join the launcher's job instead of starting a singleton). Unless the user set
+// OPENBLAS_NUM_THREADS, each child gets the cores divided by the runs at a time: the threaded
+// OpenBLAS factorises with every core by default, and `jobs` runs doing so at once would
+// oversubscribe the machine (its threads spin while they wait).
+std::vector<std::string> child_environment(bool launched, int jobs) {
   std::vector<std::string> out;
+  bool blas_threads_set = false;
   for (char** entry = environ; *entry; ++entry) {
     const std::string variable(*entry);
     const bool launcher = variable.starts_with("OMPI_") || variable.starts_with("PMIX_") ||
                           variable.starts_with("PMI_") || variable.starts_with("HYDRA_") ||
                           variable.starts_with("MPI_LOCAL");
     const bool keep = variable.starts_with("OMPI_ALLOW_RUN_AS_ROOT");  // the singleton needs it as root
+    blas_threads_set = blas_threads_set || variable.starts_with("OPENBLAS_NUM_THREADS=");
     if (!launched || !launcher || keep) out.push_back(variable);
+  }
+  if (!blas_threads_set) {
+    const long cores = std::max(1L, ::sysconf(_SC_NPROCESSORS_ONLN));
+    out.push_back(fmt::format("OPENBLAS_NUM_THREADS={}", std::max(1L, cores / std::max(1, jobs))));
   }
   return out;
 }
@@ -181,7 +191,7 @@ SweepOutcome run_sweep(const SweepPlan& plan, const SweepOptions& options) {
   write_tables(plan, options.out_dir);
   if (options.list_only) return outcome;
 
-  const auto environment = child_environment(rank.launched);
+  const auto environment = child_environment(rank.launched, options.jobs);
   struct Running {
     std::size_t point;
     Clock::time_point start;
