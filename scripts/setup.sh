@@ -7,7 +7,7 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build_dir=${NEEDLEFEM_BUILD_DIR:-$root/build}
 
-core_packages=(build-essential cmake pkg-config petsc-dev libsundials-dev libmetis-dev libgmsh-dev
+core_packages=(build-essential cmake pkg-config petsc-dev libsundials-dev libmetis-dev libsuitesparse-dev libgmsh-dev
   libopenblas0-pthread libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libfmt-dev libgtest-dev)
 test_packages=(python3-paraview python3-h5py python3-numpy python3-matplotlib xvfb xauth)
 

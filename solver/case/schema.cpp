@@ -216,9 +216,11 @@ std::vector<KeySpec> build_schema() {
            "Stability studies: steps of exactly this size with the error test switched off "
            "(Newton still converges to the tolerances; needs integration.newton = \"modified\"); absent = "
            "adaptive steps"),
-      choice("integration.linear_solver", "mumps", {"mumps", "gmres-gamg", "gmres-asm"},
-             "Newton-matrix solver: direct LU (MUMPS), or GMRES with AMG or additive Schwarz/ILU; "
-             "override details after `--` with -nf_ksp_* / -nf_pc_* options"),
+      choice("integration.linear_solver", "cholmod", {"cholmod", "mumps", "gmres-gamg", "gmres-asm"},
+             "Newton-matrix solver: sparse Cholesky (CHOLMOD) of the matrix's symmetric part on the free "
+             "unknowns, with MUMPS LU for a setup where that is not positive definite; direct LU (MUMPS); or "
+             "GMRES with AMG or additive Schwarz/ILU. With friction the Cholesky factor is a preconditioner, "
+             "not the exact inverse; override KSP details after `--` with -nf_ksp_* / -nf_pc_* options"),
       real("integration.linear_relative_tolerance", 1e-10, 0.0, 1.0,
            "Krylov solvers: relative residual reduction per linear solve"),
 

@@ -134,6 +134,7 @@ struct RunRecord {
   double max_kinetic_to_elastic = 0.0;
   IdaCounters counters;
   mechanics::MechanicsSystem::Rejections rejections;
+  mechanics::MechanicsSystem::Factorisations factorisations;
   IdaIntegrator::InitialRates initial_rates;  // the probe step giving y'(t0)
   long dofs = 0, displacement_dofs = 0;
   double mesh_s = 0.0, integration_s = 0.0, output_s = 0.0;
@@ -187,6 +188,9 @@ nlohmann::json summary_json(const Case& c, const material::Material* material, c
                                       {"inverted_element_jacobians", record.rejections.inverted_jacobians},
                                       {"failed_factorisations", record.rejections.failed_factorisations},
                                       {"failed_solves", record.rejections.failed_solves}}},
+                 {"linear_solver", c.text("integration.linear_solver")},
+                 {"factorisations", {{"cholesky", record.factorisations.cholesky},
+                                     {"ksp", record.factorisations.ksp}}},
                  {"initial_rates", {{"converged", record.initial_rates.converged},
                                     {"iterations", record.initial_rates.iterations}}},
                  {"dofs", record.dofs},
@@ -287,13 +291,17 @@ nlohmann::json run_case(const Case& c, const RunOptions& options) {
                  r.failed_factorisations + r.failed_solves);
       std::fflush(options.progress);
     };
+    const auto record_solver_counts = [&] {
+      record.counters = integrator.counters();
+      record.rejections = system->rejections();
+      record.factorisations = system->factorisations();
+    };
     for (const double t : times) {
       const auto step_start = Clock::now();
       try {
         if (t > integrator.time()) integrator.advance_to(t, report_step);
       } catch (const std::exception&) {
-        record.counters = integrator.counters();  // the failed run's summary shows the failed attempts
-        record.rejections = system->rejections();
+        record_solver_counts();  // the failed run's summary shows the failed attempts
         throw;
       }
       integration_s += seconds_since(step_start);
@@ -320,8 +328,7 @@ nlohmann::json run_case(const Case& c, const RunOptions& options) {
       record.elastic_energy_j = resultants.elastic_energy;
       if (record.elastic_energy_j > 0.0)
         record.max_kinetic_to_elastic = std::max(record.max_kinetic_to_elastic, f.kinetic_energy / record.elastic_energy_j);
-      record.counters = integrator.counters();
-      record.rejections = system->rejections();
+      record_solver_counts();
       history.row(t, record.counters, f, record.reactions, record.elastic_energy_j,
                   needle ? needle->history_cells() : "");
       record.time_reached_s = t;

@@ -169,5 +169,31 @@ TEST(TetElement, MeanDilatationOnTet4IsTheDisplacementElement) {
     EXPECT_NEAR(mixed.stiffness[c], plain.stiffness[c], 1e-9 * std::abs(plain.stiffness[0]));
 }
 
+// The B-free products of the hot loops against products with the explicit B (6 x 30).
+TEST(TetElement, GreenStrainProductsWithoutBMatchTheOperator) {
+  const auto x = element_coordinates(10);
+  const ElementGeometry geometry = element_geometry(10, x.data());
+  const auto f = random_values(9, 0.4, 11), u = random_values(30, 1e-4, 12), stress = random_values(6, 500.0, 13);
+  std::array<double, 9> F{};
+  for (int k = 0; k < 9; ++k) F[k] = f[k] + (k % 4 == 0 ? 1.0 : 0.0);
+  const std::array<double, kVoigt> s{stress[0], stress[1], stress[2], stress[3], stress[4], stress[5]};
+  for (int q = 0; q < geometry.points; ++q) {
+    std::vector<double> B(kVoigt * 30);
+    green_strain_operator(F, geometry.gradient_at(q), 10, B.data());
+    std::vector<double> work(30, 1.0), expected_work(30, 1.0);  // both add to a nonzero start
+    add_green_strain_transpose(F, geometry.gradient_at(q), 10, s, 0.3, work.data());
+    const auto strain = green_strain_variation(F, geometry.gradient_at(q), 10, u.data());
+    for (int m = 0; m < kVoigt; ++m) {
+      double expected_strain = 0.0;
+      for (int c = 0; c < 30; ++c) {
+        expected_strain += B[m * 30 + c] * u[c];
+        expected_work[c] += 0.3 * B[m * 30 + c] * s[m];
+      }
+      EXPECT_NEAR(strain[m], expected_strain, 1e-12 * std::abs(expected_strain) + 1e-18) << "point " << q << " m " << m;
+    }
+    for (int c = 0; c < 30; ++c) EXPECT_NEAR(work[c], expected_work[c], 1e-12 * std::abs(expected_work[c])) << c;
+  }
+}
+
 }  // namespace
 }  // namespace needlefem::elements

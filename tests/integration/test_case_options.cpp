@@ -7,7 +7,7 @@
 namespace needlefem {
 namespace {
 
-TEST(IntegrationCaseOptions, DefaultsAreIdaDefaultsAndMumps) {
+TEST(IntegrationCaseOptions, DefaultsAreIdaDefaultsAndSparseCholesky) {
   const Case c = Case::parse("", "defaults");
   const IdaOptions ida = ida_options_from_case(c);
   EXPECT_DOUBLE_EQ(ida.relative_tolerance, 1e-4);
@@ -16,7 +16,7 @@ TEST(IntegrationCaseOptions, DefaultsAreIdaDefaultsAndMumps) {
   EXPECT_EQ(ida.max_newton_iterations, 20);  // not IDA's 4: contact kinks need more (schema.cpp)
   EXPECT_FALSE(ida.fixed_step.has_value());
   const KspOptions ksp = ksp_options_from_case(c);
-  EXPECT_EQ(ksp.method, "mumps");
+  EXPECT_EQ(ksp.method, "cholmod");
   EXPECT_EQ(ksp.prefix, "nf_");
 }
 
@@ -34,7 +34,7 @@ TEST(IntegrationCaseOptions, GivenKeysAndOverridesAreUsed) {
   EXPECT_EQ(ida.max_newton_iterations, 7);
   EXPECT_EQ(ksp_options_from_case(c).method, "gmres-gamg");
   EXPECT_EQ(ida.newton, NewtonMethod::modified);
-  EXPECT_THROW(Case::parse("[integration]\nlinear_solver = \"cholmod\"\n", "inline"), CaseError);
+  EXPECT_THROW(Case::parse("[integration]\nlinear_solver = \"pardiso\"\n", "inline"), CaseError);
   // Fixed steps with the default Newton-Krylov: one error naming the key.
   EXPECT_THROW(ida_options_from_case(Case::parse("[integration]\nfixed_step_s = 0.005\n", "inline")), CaseError);
 }

@@ -196,12 +196,15 @@ def figures(args):
         check(png_ok(out / f"{name}.png"), f"{name}.png written and not blank")
     point = read_csv(sweep_dir)[0]["point"]
     png = out / "max_log_strain.png"
-    # A 24-bit screen for GLX; one retry, because pvbatch now and then aborts creating its X window
-    # when the virtual server is slow to come up on a loaded machine (seen once in ~10 -j2 suite
-    # runs, in vtkXOpenGLRenderWindow::CreateAWindow), which is the server's start, not the script.
+    # A 24-bit screen for GLX; two retries a few seconds apart, because pvbatch now and then aborts
+    # creating its X window when the virtual server is slow to come up on a loaded machine (seen
+    # once in ~10 -j2 suite runs, in vtkXOpenGLRenderWindow::CreateAWindow, and once on both of two
+    # back-to-back attempts), which is the server's start, not the script.
     command = ["xvfb-run", "-a", "-s", "-screen 0 1280x1024x24", "pvbatch", args.render,
                str(sweep_dir / point / "result.xdmf"), "--png", str(png)]
-    for attempt in range(2):
+    for attempt in range(3):
+        if attempt:
+            time.sleep(3)
         result = subprocess.run(command, capture_output=True, text=True)
         print(result.stdout, result.stderr[-2000:])
         if result.returncode == 0:

@@ -105,6 +105,32 @@ void green_strain_operator(const std::array<double, 9>& F, const double* gradien
   }
 }
 
+void add_green_strain_transpose(const std::array<double, 9>& F, const double* gradient, int nodes,
+                                const std::array<double, kVoigt>& s, double w, double* out) {
+  const double S[9] = {s[0], s[5], s[4], s[5], s[1], s[3], s[4], s[3], s[2]};
+  double FS[9];
+  for (int i = 0; i < 3; ++i)
+    for (int J = 0; J < 3; ++J) FS[3 * i + J] = F[3 * i] * S[J] + F[3 * i + 1] * S[3 + J] + F[3 * i + 2] * S[6 + J];
+  for (int a = 0; a < nodes; ++a) {
+    const double* G = gradient + 3 * a;
+    for (int i = 0; i < 3; ++i) out[3 * a + i] += w * (FS[3 * i] * G[0] + FS[3 * i + 1] * G[1] + FS[3 * i + 2] * G[2]);
+  }
+}
+
+std::array<double, kVoigt> green_strain_variation(const std::array<double, 9>& F, const double* gradient, int nodes,
+                                                  const double* u) {
+  double H[9] = {};
+  for (int a = 0; a < nodes; ++a) {
+    const double* G = gradient + 3 * a;
+    for (int i = 0; i < 3; ++i)
+      for (int J = 0; J < 3; ++J) H[3 * i + J] += u[3 * a + i] * G[J];
+  }
+  double A[9];  // Fᵀ H
+  for (int I = 0; I < 3; ++I)
+    for (int J = 0; J < 3; ++J) A[3 * I + J] = F[I] * H[J] + F[3 + I] * H[3 + J] + F[6 + I] * H[6 + J];
+  return {A[0], A[4], A[8], A[5] + A[7], A[2] + A[6], A[1] + A[3]};
+}
+
 TetElementKernel::TetElementKernel(const material::Material& material, Formulation formulation)
     : material_(material), formulation_(formulation) {
   if (tissue()) {
@@ -151,7 +177,7 @@ ElementResult TetElementKernel::evaluate(const ElementGeometry& geometry, const 
   std::vector<double>& r = result.residual;
   std::vector<double>& K = result.stiffness;
   const bool mixed = formulation_ == Formulation::mean_dilatation;
-  std::vector<double> B(static_cast<std::size_t>(kVoigt) * dofs), DB(static_cast<std::size_t>(kVoigt) * dofs);
+  std::vector<double> B(with_tangent ? kVoigt * dofs : 0), DB(with_tangent ? kVoigt * dofs : 0);
   std::vector<double> spatial_gradient(dofs);              // n_ai = ∂N_a/∂x_i
   std::vector<double> volume_gradient(mixed ? dofs : 0);   // ∂v_e/∂u
   std::vector<double> volume_hessian(mixed && with_tangent ? K.size() : 0);  // ∂²v_e/∂u²
@@ -210,11 +236,10 @@ ElementResult TetElementKernel::evaluate(const ElementGeometry& geometry, const 
     const std::array<double, kVoigt> stress_v = to_voigt(stress);
     result.energy += w * isochoric.elastic.energy(C);
 
-    green_strain_operator(point.deformation_gradient, G, n, B.data());
-    for (int m = 0; m < kVoigt; ++m)
-      for (int c = 0; c < dofs; ++c) r[c] += w * B[static_cast<std::size_t>(m) * dofs + c] * stress_v[m];
+    add_green_strain_transpose(point.deformation_gradient, G, n, stress_v, w, r.data());
 
     if (with_tangent) {
+      green_strain_operator(point.deformation_gradient, G, n, B.data());
       point.elastic_tangent = to_voigt(isochoric.elastic_tangent(C));
       const double scale = w * material_tangent_scale;
       for (int m = 0; m < kVoigt; ++m)

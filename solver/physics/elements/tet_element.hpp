@@ -117,5 +117,13 @@ class TetElementKernel {
 
 // B_q of the header comment (6 x 3n, row-major) at deformation gradient F and gradients G.
 void green_strain_operator(const std::array<double, 9>& F, const double* gradient, int nodes, double* B);
+// The two products with B_q that residuals and condensation need, without forming B_q (the
+// hot loops of a Newton-Krylov solve call them for every point of every element):
+//   out += w B_qᵀ s,  i.e. out_a += w F S G_a  (S the symmetric tensor of the Voigt stress s);
+void add_green_strain_transpose(const std::array<double, 9>& F, const double* gradient, int nodes,
+                                const std::array<double, kVoigt>& s, double w, double* out);
+//   B_q u = δE_v = Voigt of sym(Fᵀ H), H = Σ_a u_a ⊗ G_a (engineering shear).
+std::array<double, kVoigt> green_strain_variation(const std::array<double, 9>& F, const double* gradient, int nodes,
+                                                  const double* u);
 
 }  // namespace needlefem::elements

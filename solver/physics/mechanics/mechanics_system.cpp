@@ -85,7 +85,12 @@ MechanicsSystem::MechanicsSystem(const TetMesh& mesh, const material::Material& 
   if (!workspace_given)
     check(PetscOptionsSetValue(nullptr, ("-" + solver_options.prefix + "mat_mumps_icntl_14").c_str(), "100"),
           "PetscOptionsSetValue");
-  solver_ = std::make_unique<KspSolver>(PETSC_COMM_SELF, solver_options);
+  KspOptions ksp_options = solver_options;
+  if (solver_options.method == "cholmod") {
+    cholesky_ = std::make_unique<SparseCholesky>(prescribed_);
+    ksp_options.method = "mumps";
+  }
+  solver_ = std::make_unique<KspSolver>(PETSC_COMM_SELF, ksp_options);
   check(VecCreateSeq(PETSC_COMM_SELF, dofs_.dof_count, &rhs_), "VecCreateSeq");
   check(VecDuplicate(rhs_, &solution_), "VecDuplicate");
 }
@@ -131,7 +136,7 @@ bool MechanicsSystem::assemble_internal(const double* y, const double* ydot, dou
                                         double* energy) const {
   const int n = mesh_.nodes_per_tet, terms = kernel_.prony_terms();
   const auto& prony = kernel_.prony();
-  std::vector<double> u_e(3 * n);
+  std::array<double, 3 * 10> u_e{};
   std::fill(f_u, f_u + displacement_dofs(), 0.0);
   if (energy) *energy = 0.0;
   for (std::size_t k = 0; k < geometry_.size(); ++k) {
@@ -216,7 +221,8 @@ DaeStatus MechanicsSystem::setup_jacobian(double t, Vec y, Vec ydot, double cj) 
     for (const auto& d : conditions_.dofs) rows.push_back(d.dof);
     check(MatZeroRows(jacobian_, static_cast<PetscInt>(rows.size()), rows.data(), 1.0, nullptr, nullptr),
           "MatZeroRows");
-    if (!solver_->factor(jacobian_)) {
+    cholesky_factored_ = cholesky_ && cholesky_->factor(jacobian_);
+    if (!cholesky_factored_ && !solver_->factor(jacobian_)) {
       ++rejections_.failed_factorisations;
       return DaeStatus::recoverable;
     }
@@ -227,38 +233,40 @@ DaeStatus MechanicsSystem::setup_jacobian(double t, Vec y, Vec ydot, double cj) 
 
 DaeStatus MechanicsSystem::solve_jacobian(Vec b, Vec x) {
   return guarded([&] {
-    const int n = mesh_.nodes_per_tet, terms = kernel_.prony_terms(), dofs = 3 * n;
+    const int n = mesh_.nodes_per_tet, terms = kernel_.prony_terms();
     const auto& prony = kernel_.prony();
     const PetscInt nu = displacement_dofs();
-    std::vector<double> B(static_cast<std::size_t>(elements::kVoigt) * dofs);
     std::vector<double> relaxation(terms);  // 1 / (cj + 1/τ_i)
     for (int i = 0; i < terms; ++i) relaxation[i] = 1.0 / (cj_ + 1.0 / prony[i].tau_s);
     {
       ReadArray in(b);
       WriteArray rhs(rhs_);
-      std::copy(in.data(), in.data() + nu, rhs.data());
+      double* r = rhs.data();
+      std::copy(in.data(), in.data() + nu, r);
+      std::array<double, 3 * 10> force{};
       for (std::size_t k = 0; terms && k < geometry_.size(); ++k) {
-        const int* nodes = mesh_.tet(dofs_.tissue_tets[k]);
+        std::fill(force.begin(), force.end(), 0.0);
         for (int p = 0; p < geometry_[k].points; ++p) {
-          // Σ_i b_Qi / (cj + 1/τ_i), then w Bᵀ of it.
+          // w Bᵀ Σ_i b_Qi / (cj + 1/τ_i).
           std::array<double, elements::kVoigt> source{};
           const double* b_q = in.data() + viscous_offset(k) + static_cast<PetscInt>(p) * terms * elements::kVoigt;
           for (int i = 0; i < terms; ++i)
             for (int m = 0; m < elements::kVoigt; ++m) source[m] += relaxation[i] * b_q[i * elements::kVoigt + m];
-          elements::green_strain_operator(condensation_[k * geometry_[k].points + p].deformation_gradient,
-                                          geometry_[k].gradient_at(p), n, B.data());
-          for (int a = 0; a < n; ++a)
-            for (int c = 0; c < 3; ++c) {
-              const int dof = dofs_.dof(nodes[a], c);
-              if (prescribed_[dof]) continue;
-              double s = 0.0;
-              for (int m = 0; m < elements::kVoigt; ++m) s += B[static_cast<std::size_t>(m) * dofs + 3 * a + c] * source[m];
-              rhs.data()[dof] += geometry_[k].weight[p] * s;
-            }
+          elements::add_green_strain_transpose(condensation_[k * geometry_[k].points + p].deformation_gradient,
+                                               geometry_[k].gradient_at(p), n, source, geometry_[k].weight[p],
+                                               force.data());
         }
+        const int* nodes = mesh_.tet(dofs_.tissue_tets[k]);
+        for (int a = 0; a < n; ++a)
+          for (int c = 0; c < 3; ++c) {
+            const int dof = dofs_.dof(nodes[a], c);
+            if (!prescribed_[dof]) r[dof] += force[3 * a + c];
+          }
       }
     }
-    if (!solver_->solve(rhs_, solution_)) {
+    if (cholesky_factored_)
+      cholesky_->solve(rhs_, solution_);
+    else if (!solver_->solve(rhs_, solution_)) {
       ++rejections_.failed_solves;
       return DaeStatus::recoverable;
     }
@@ -266,15 +274,15 @@ DaeStatus MechanicsSystem::solve_jacobian(Vec b, Vec x) {
     ReadArray in(b), x_u(solution_);
     WriteArray out(x);
     std::copy(x_u.data(), x_u.data() + nu, out.data());
-    std::vector<double> u_e(dofs);
+    std::array<double, 3 * 10> u_e{};
     for (std::size_t k = 0; terms && k < geometry_.size(); ++k) {
       gather_displacement(x_u.data(), k, u_e.data());
       for (int p = 0; p < geometry_[k].points; ++p) {
         const elements::PointResponse& point = condensation_[k * geometry_[k].points + p];
-        elements::green_strain_operator(point.deformation_gradient, geometry_[k].gradient_at(p), n, B.data());
-        std::array<double, elements::kVoigt> strain{}, stress{};  // B x_u and D⁰ B x_u
-        for (int m = 0; m < elements::kVoigt; ++m)
-          for (int c = 0; c < dofs; ++c) strain[m] += B[static_cast<std::size_t>(m) * dofs + c] * u_e[c];
+        // D⁰ B x_u
+        const auto strain =
+            elements::green_strain_variation(point.deformation_gradient, geometry_[k].gradient_at(p), n, u_e.data());
+        std::array<double, elements::kVoigt> stress{};
         for (int m = 0; m < elements::kVoigt; ++m)
           for (int l = 0; l < elements::kVoigt; ++l) stress[m] += point.elastic_tangent[m * elements::kVoigt + l] * strain[l];
         const PetscInt offset = viscous_offset(k) + static_cast<PetscInt>(p) * terms * elements::kVoigt;
@@ -287,6 +295,10 @@ DaeStatus MechanicsSystem::solve_jacobian(Vec b, Vec x) {
     }
     return DaeStatus::ok;
   });
+}
+
+MechanicsSystem::Factorisations MechanicsSystem::factorisations() const {
+  return {cholesky_ ? cholesky_->factorizations() : 0, solver_->factorizations()};
 }
 
 MechanicsSystem::Resultants MechanicsSystem::resultants(Vec y, const std::vector<std::string>& surfaces) const {

@@ -16,8 +16,10 @@
 // setup_jacobian condenses Q element by element (Schur complement):
 //   K̂ = J_uu - Σ J_uQ J_QQ⁻¹ J_Qu = K with D⁰ scaled by 1 - Σ_i g_i/(1 + c_j τ_i),
 // assembles K̂ into a PETSc AIJ matrix of block size 3 (prescribed rows replaced by identity
-// rows) and factors it with integration/KspSolver (MUMPS LU by default; [integration] keys and
-// -nf_ksp_* options choose others). solve_jacobian back-substitutes:
+// rows) and factors it: integration.linear_solver = "cholmod" (the default) factors the symmetric
+// part of the free block with integration/SparseCholesky and falls back to MUMPS LU for that
+// setup when it is not positive definite; "mumps" and the Krylov methods go through
+// integration/KspSolver (-nf_ksp_* options refine them). solve_jacobian back-substitutes:
 //   K̂ x_u = b_u + Σ_q w_q B_qᵀ Σ_i b_Qi / (c_j + 1/τ_i)     (free rows only),
 //   x_Qi = (b_Qi + (g_i/τ_i) D⁰_q B_q x_u) / (c_j + 1/τ_i).
 // A non-positive det F anywhere gives DaeStatus::recoverable (IDA cuts the step); so does a
@@ -32,6 +34,7 @@
 
 #include "integration/dae_system.hpp"
 #include "integration/ksp_solver.hpp"
+#include "integration/sparse_cholesky.hpp"
 #include "model/tet_mesh.hpp"
 #include "physics/elements/tet_element.hpp"
 #include "physics/material/material.hpp"
@@ -83,6 +86,14 @@ class MechanicsSystem final : public DaeSystem {
     long failed_solves = 0;          // ... or solve with it
   };
   const Rejections& rejections() const { return rejections_; }
+  // How the Newton matrices were factored: by sparse Cholesky, and by the KSP solver (all of
+  // them for "mumps" and the Krylov methods; with "cholmod", the setups whose symmetric part
+  // was not positive definite).
+  struct Factorisations {
+    long cholesky = 0;
+    long ksp = 0;
+  };
+  Factorisations factorisations() const;
 
   // Adds a surface's terms (contact, tractions; surface_load.hpp) to residual and Jacobian.
   void add_surface_load(std::shared_ptr<SurfaceLoad> load) { surface_loads_.push_back(std::move(load)); }
@@ -131,7 +142,9 @@ class MechanicsSystem final : public DaeSystem {
   double cj_ = 0.0;
   std::vector<elements::PointResponse> condensation_;  // per element and point (viscous only)
   Mat jacobian_ = nullptr;
-  std::unique_ptr<KspSolver> solver_;
+  std::unique_ptr<SparseCholesky> cholesky_;  // integration.linear_solver = "cholmod" only
+  std::unique_ptr<KspSolver> solver_;         // the method, or LU when the Cholesky one fails
+  bool cholesky_factored_ = false;            // which of the two holds the last factorisation
   Vec rhs_ = nullptr, solution_ = nullptr;
 };
 

@@ -1,0 +1,182 @@
+// Equations and the measurements behind the choice: sparse_cholesky.hpp.
+#include "integration/sparse_cholesky.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include <cholmod.h>
+#include <fmt/core.h>
+
+#include "integration/petsc_arrays.hpp"
+#include "integration/petsc_session.hpp"
+
+namespace needlefem {
+
+namespace {
+
+// The CSR arrays of a SeqAIJ matrix, borrowed for a scope.
+class RowStructure {
+ public:
+  explicit RowStructure(Mat A) : A_(A) {
+    PetscBool done = PETSC_FALSE;
+    petsc_check(MatGetRowIJ(A_, 0, PETSC_FALSE, PETSC_FALSE, &rows_, &start_, &columns_, &done), "MatGetRowIJ");
+    if (!done) throw std::invalid_argument("sparse Cholesky: the matrix has no row structure (not SeqAIJ)");
+  }
+  ~RowStructure() {
+    PetscBool done = PETSC_FALSE;
+    MatRestoreRowIJ(A_, 0, PETSC_FALSE, PETSC_FALSE, &rows_, &start_, &columns_, &done);
+  }
+  RowStructure(const RowStructure&) = delete;
+  RowStructure& operator=(const RowStructure&) = delete;
+  PetscInt rows() const { return rows_; }
+  const PetscInt* start() const { return start_; }
+  const PetscInt* columns() const { return columns_; }
+
+ private:
+  Mat A_;
+  PetscInt rows_ = 0;
+  const PetscInt* start_ = nullptr;
+  const PetscInt* columns_ = nullptr;
+};
+
+class MatrixValues {
+ public:
+  explicit MatrixValues(Mat A) : A_(A) { petsc_check(MatSeqAIJGetArrayRead(A_, &values_), "MatSeqAIJGetArrayRead"); }
+  ~MatrixValues() { MatSeqAIJRestoreArrayRead(A_, &values_); }
+  MatrixValues(const MatrixValues&) = delete;
+  MatrixValues& operator=(const MatrixValues&) = delete;
+  const double* data() const { return values_; }
+
+ private:
+  Mat A_;
+  const PetscScalar* values_ = nullptr;
+};
+
+void cholmod_check(bool ok, const cholmod_common& common, const char* what) {
+  if (!ok || common.status < CHOLMOD_OK)
+    throw std::runtime_error(fmt::format("CHOLMOD: {} failed (status {})", what, common.status));
+}
+
+}  // namespace
+
+SparseCholesky::SparseCholesky(std::vector<char> prescribed)
+    : prescribed_(std::move(prescribed)), common_(new cholmod_common) {
+  cholmod_start(common_);
+  common_->print = 0;  // failures are reported through status and last_failure()
+}
+
+SparseCholesky::~SparseCholesky() {
+  release();
+  cholmod_finish(common_);
+  delete common_;
+}
+
+void SparseCholesky::release() {
+  cholmod_free_factor(&factor_, common_);
+  cholmod_free_sparse(&lower_, common_);
+  cholmod_free_dense(&rhs_, common_);
+  cholmod_free_dense(&solution_, common_);
+  cholmod_free_dense(&work_y_, common_);
+  cholmod_free_dense(&work_e_, common_);
+}
+
+double SparseCholesky::factor_entries() const { return factor_ ? common_->lnz : 0.0; }
+
+void SparseCholesky::analyse(Mat A, const PetscInt* row_start, const PetscInt* columns) {
+  release();
+  const auto n = static_cast<PetscInt>(prescribed_.size());
+  free_index_.assign(n, -1);
+  PetscInt free_count = 0;
+  for (PetscInt i = 0; i < n; ++i)
+    if (!prescribed_[i]) free_index_[i] = free_count++;
+
+  // The lower triangle of S_ff by columns is the upper triangle of J_ff by rows.
+  entry_.clear();
+  mirror_.clear();
+  couplings_.clear();
+  std::vector<int> column_start{0};
+  std::vector<int> row_index;
+  for (PetscInt i = 0; i < n; ++i) {
+    if (prescribed_[i]) continue;
+    for (PetscInt k = row_start[i]; k < row_start[i + 1]; ++k) {
+      const PetscInt j = columns[k];
+      if (prescribed_[j]) {
+        couplings_.push_back({k, free_index_[i], j});
+        continue;
+      }
+      if (j < i) continue;
+      const PetscInt* row_j_begin = columns + row_start[j];
+      const PetscInt* row_j_end = columns + row_start[j + 1];
+      const PetscInt* found = std::lower_bound(row_j_begin, row_j_end, i);
+      if (found == row_j_end || *found != i)
+        throw std::invalid_argument(
+            fmt::format("sparse Cholesky: the matrix pattern is not symmetric (entry {},{} without {},{})", i, j, j, i));
+      entry_.push_back(k);
+      mirror_.push_back(static_cast<PetscInt>(found - columns));
+      row_index.push_back(static_cast<int>(free_index_[j]));
+    }
+    column_start.push_back(static_cast<int>(row_index.size()));
+  }
+  lower_ = cholmod_allocate_sparse(free_count, free_count, row_index.size(), /*sorted=*/1, /*packed=*/1,
+                                   /*stype=*/-1, CHOLMOD_REAL, common_);
+  cholmod_check(lower_ != nullptr, *common_, "allocate_sparse");
+  std::copy(column_start.begin(), column_start.end(), static_cast<int*>(lower_->p));
+  std::copy(row_index.begin(), row_index.end(), static_cast<int*>(lower_->i));
+  factor_ = cholmod_analyze(lower_, common_);
+  cholmod_check(factor_ != nullptr, *common_, "analyze");
+  rhs_ = cholmod_zeros(free_count, 1, CHOLMOD_REAL, common_);
+  cholmod_check(rhs_ != nullptr, *common_, "zeros");
+  MatInfo info;
+  petsc_check(MatGetInfo(A, MAT_LOCAL, &info), "MatGetInfo");
+  entries_ = static_cast<PetscInt>(info.nz_used);
+}
+
+bool SparseCholesky::factor(Mat A) {
+  PetscInt rows = 0, columns = 0;
+  petsc_check(MatGetSize(A, &rows, &columns), "MatGetSize");
+  if (rows != columns || rows != static_cast<PetscInt>(prescribed_.size()))
+    throw std::invalid_argument(fmt::format("sparse Cholesky: a {}x{} matrix for {} unknowns", rows, columns,
+                                            prescribed_.size()));
+  MatInfo info;
+  petsc_check(MatGetInfo(A, MAT_LOCAL, &info), "MatGetInfo");
+  {
+    RowStructure structure(A);
+    if (static_cast<PetscInt>(info.nz_used) != entries_) analyse(A, structure.start(), structure.columns());
+  }
+  {
+    MatrixValues values(A);
+    double* x = static_cast<double*>(lower_->x);
+    for (std::size_t m = 0; m < entry_.size(); ++m) x[m] = 0.5 * (values.data()[entry_[m]] + values.data()[mirror_[m]]);
+  }
+  matrix_ = A;
+  ++factorizations_;
+  const int ok = cholmod_factorize(lower_, factor_, common_);
+  if (common_->status == CHOLMOD_NOT_POSDEF) {
+    last_failure_ = fmt::format("the Newton matrix's symmetric part is not positive definite (free column {} of {})",
+                                static_cast<long>(factor_->minor), static_cast<long>(lower_->ncol));
+    return false;
+  }
+  cholmod_check(ok != 0, *common_, "factorize");
+  return true;
+}
+
+void SparseCholesky::solve(Vec b, Vec x) {
+  if (!matrix_) throw std::logic_error("sparse Cholesky: solve() before factor()");
+  ReadArray in(b);
+  {
+    MatrixValues values(matrix_);
+    double* r = static_cast<double*>(rhs_->x);
+    const auto n = static_cast<PetscInt>(prescribed_.size());
+    for (PetscInt i = 0; i < n; ++i)
+      if (!prescribed_[i]) r[free_index_[i]] = in.data()[i];
+    for (const Coupling& c : couplings_) r[c.free_row] -= values.data()[c.entry] * in.data()[c.column];
+  }
+  cholmod_check(cholmod_solve2(CHOLMOD_A, factor_, rhs_, nullptr, &solution_, nullptr, &work_y_, &work_e_, common_) != 0,
+                *common_, "solve2");
+  WriteArray out(x);
+  const double* s = static_cast<const double*>(solution_->x);
+  for (std::size_t i = 0; i < prescribed_.size(); ++i)
+    out.data()[i] = prescribed_[i] ? in.data()[i] : s[free_index_[i]];
+}
+
+}  // namespace needlefem
