@@ -9,7 +9,13 @@ factorisations), peak RSS, DOF, plus two measures showing inertia is negligible:
   * rho a L / sigma: the needle's largest acceleration (centripetal, omega^2 r at the needle radius;
     the insertion speed is constant) times the cube edge, against the largest von Mises stress.
 
-    tests/benchmarks/bench_mechanics.py [--exe build/needlefem] [--cores 0.4 0.2] [--out out/bench_mechanics]
+Each mesh runs once per Newton method of --newton: "krylov" (the default of integration.newton,
+GMRES on difference-quotient Jacobian products preconditioned by the factored Newton matrix) and
+"modified" (IDA's modified Newton on the factored matrix), which suits this contact-free scene
+(on frictional contact it stalls at t = 0, case/schema.cpp).
+
+    tests/benchmarks/bench_mechanics.py [--exe build/needlefem] [--cores 0.4 0.2] [--newton krylov modified]
+                                        [--out out/bench_mechanics]
 """
 import argparse
 import json
@@ -24,6 +30,7 @@ parser = argparse.ArgumentParser()
 parser.add_argument("--exe", default=str(root / "build" / "needlefem"))
 parser.add_argument("--case", type=Path, default=root / "cases" / "table1" / "r0.50_a20_f0.25.toml")
 parser.add_argument("--cores", nargs="+", type=float, default=[0.4, 0.2])
+parser.add_argument("--newton", nargs="+", choices=["krylov", "modified"], default=["krylov", "modified"])
 parser.add_argument("--out", type=Path, default=root / "out" / "bench_mechanics")
 parser.add_argument("--set", action="append", default=[], help="extra case overrides KEY=VALUE")
 args = parser.parse_args()
@@ -34,19 +41,19 @@ RADIUS = 0.5e-3            # m, needle radius of the case
 EDGE = 12e-3               # m, cube edge
 
 rows = []
-for core in args.cores:
-    out = args.out / f"core{core}"
+for core, newton in [(core, newton) for core in args.cores for newton in args.newton]:
+    out = args.out / f"core{core}_{newton}"
     # The mechanics benchmark of issue 3: the cavity surface tied to the needle (no contact), with
     # IDA's GMRES tolerance (the Table I case's looser one is for its frictional runs).
     command = [args.exe, "run", str(args.case), "--out", str(out), "--set", f"tissue.core_element_mm={core}",
                "--set", "motion.duration_s=0.1", "--set", "output.interval_s=0.01", "--set", "contact.mode=tied",
-               "--set", "integration.krylov_tolerance=0.05"]
+               "--set", "integration.krylov_tolerance=0.05", "--set", f"integration.newton={newton}"]
     for extra in args.set:
         command += ["--set", extra]
     start = time.perf_counter()
     result = subprocess.run(command, capture_output=True, text=True)
     wall = time.perf_counter() - start
-    row = {"core_element_mm": core, "exit_code": result.returncode, "process_wall_s": round(wall, 3),
+    row = {"core_element_mm": core, "newton": newton, "exit_code": result.returncode, "process_wall_s": round(wall, 3),
            "command": " ".join(command[1:])}
     if result.returncode != 0:
         row["error"] = result.stderr.strip().splitlines()[-1]
