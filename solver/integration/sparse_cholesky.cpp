@@ -82,7 +82,10 @@ void SparseCholesky::release() {
 
 double SparseCholesky::factor_entries() const { return factor_ ? common_->lnz : 0.0; }
 
-void SparseCholesky::analyse(Mat A, const PetscInt* row_start, const PetscInt* columns) {
+void SparseCholesky::analyse(Mat A) {
+  const RowStructure structure(A);
+  const PetscInt* row_start = structure.start();
+  const PetscInt* columns = structure.columns();
   release();
   const auto n = static_cast<PetscInt>(prescribed_.size());
   free_index_.assign(n, -1);
@@ -126,9 +129,7 @@ void SparseCholesky::analyse(Mat A, const PetscInt* row_start, const PetscInt* c
   cholmod_check(factor_ != nullptr, *common_, "analyze");
   rhs_ = cholmod_zeros(free_count, 1, CHOLMOD_REAL, common_);
   cholmod_check(rhs_ != nullptr, *common_, "zeros");
-  MatInfo info;
-  petsc_check(MatGetInfo(A, MAT_LOCAL, &info), "MatGetInfo");
-  entries_ = static_cast<PetscInt>(info.nz_used);
+  entries_ = row_start[n];
 }
 
 bool SparseCholesky::factor(Mat A) {
@@ -139,10 +140,7 @@ bool SparseCholesky::factor(Mat A) {
                                             prescribed_.size()));
   MatInfo info;
   petsc_check(MatGetInfo(A, MAT_LOCAL, &info), "MatGetInfo");
-  {
-    RowStructure structure(A);
-    if (static_cast<PetscInt>(info.nz_used) != entries_) analyse(A, structure.start(), structure.columns());
-  }
+  if (static_cast<PetscInt>(info.nz_used) != entries_) analyse(A);
   {
     MatrixValues values(A);
     double* x = static_cast<double*>(lower_->x);

@@ -52,7 +52,7 @@ class SparseCholesky {
   const std::string& last_failure() const { return last_failure_; }
 
  private:
-  void analyse(Mat A, const PetscInt* row_start, const PetscInt* columns);
+  void analyse(Mat A);  // ordering, symbolic factorisation and the index maps of A's pattern
   void release();
 
   std::vector<char> prescribed_;
