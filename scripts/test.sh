@@ -10,4 +10,18 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 # ctest runs one test per core; one BLAS thread each keeps the threaded OpenBLAS from
 # oversubscribing them.
 export OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1}
-ctest --output-on-failure -j "$(nproc)"
+status=0
+ctest --output-on-failure -j "$(nproc)" | tee ctest_output.log || status=$?
+if [ "$status" -ne 0 ]; then
+  # CI keeps only the end of a long log: repeat each failed test's output (its last 60
+  # lines, from ctest's own log) and then ctest's summary, so the reason is in that end.
+  while read -r failed; do
+    name=${failed#*:}
+    echo "===== output of failed test $name ====="
+    awk -v name="$name" '$0 ~ "^[0-9]+/[0-9]+ Test: " name "$" {on = 1; next}
+      on && /^"[^"]*" end time:/ {exit} on' Testing/Temporary/LastTest.log | tail -n 60
+  done < Testing/Temporary/LastTestsFailed.log
+  echo "===== ctest summary ====="
+  sed -n '/tests passed, /,$p' ctest_output.log
+fi
+exit "$status"
