@@ -221,7 +221,12 @@ DaeStatus MechanicsSystem::setup_jacobian(double t, Vec y, Vec ydot, double cj) 
     for (const auto& d : conditions_.dofs) rows.push_back(d.dof);
     check(MatZeroRows(jacobian_, static_cast<PetscInt>(rows.size()), rows.data(), 1.0, nullptr, nullptr),
           "MatZeroRows");
-    cholesky_factored_ = cholesky_ && cholesky_->factor(jacobian_);
+    // A symmetric part found indefinite (sliding friction) usually stays so for the next
+    // setups: skip Cholesky for a few of them rather than pay a failed attempt each time.
+    const bool try_cholesky = cholesky_ && cholesky_skips_left_ == 0;
+    if (cholesky_skips_left_ > 0) --cholesky_skips_left_;
+    cholesky_factored_ = try_cholesky && cholesky_->factor(jacobian_);
+    if (try_cholesky && !cholesky_factored_) cholesky_skips_left_ = kCholeskySkipsAfterIndefinite;
     if (!cholesky_factored_ && !solver_->factor(jacobian_)) {
       ++rejections_.failed_factorisations;
       return DaeStatus::recoverable;

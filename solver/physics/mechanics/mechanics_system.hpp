@@ -145,6 +145,8 @@ class MechanicsSystem final : public DaeSystem {
   std::unique_ptr<SparseCholesky> cholesky_;  // integration.linear_solver = "cholmod" only
   std::unique_ptr<KspSolver> solver_;         // the method, or LU when the Cholesky one fails
   bool cholesky_factored_ = false;            // which of the two holds the last factorisation
+  static constexpr int kCholeskySkipsAfterIndefinite = 3;
+  int cholesky_skips_left_ = 0;  // setups that go straight to LU after an indefinite one
   Vec rhs_ = nullptr, solution_ = nullptr;
 };
 
