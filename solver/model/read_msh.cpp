@@ -44,13 +44,10 @@ bool is_tissue(const std::string& region) { return region.rfind("tissue", 0) == 
 // its cavity face inward.
 bool opposite_on_normal_side(const TetMesh& mesh, std::size_t e, int a, int b, int c) {
   const int* t = mesh.tet(e);
-  std::array<int, 4> order{};
+  std::array<int, 4> order{};  // local positions of a, b, c, opposite
   const std::array<int, 3> face{a, b, c};
-  int used = 0;
   for (int k = 0; k < 3; ++k) order[k] = static_cast<int>(std::find(t, t + 4, face[k]) - t);
-  for (int k = 0; k < 3; ++k) used |= 1 << order[k];
-  for (int k = 0; k < 4; ++k)
-    if (!(used & (1 << k))) order[3] = k;
+  order[3] = 6 - order[0] - order[1] - order[2];  // positions 0..3 sum to 6
   int inversions = 0;
   for (int i = 0; i < 4; ++i)
     for (int j = i + 1; j < 4; ++j) inversions += order[i] > order[j] ? 1 : 0;
