@@ -7,9 +7,9 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 cd "${NEEDLEFEM_BUILD_DIR:-$root/build}"
 # OpenMPI refuses to start as root unless told; CI and the quick start run as root.
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-# ctest runs one test per core; one BLAS thread each keeps the threaded OpenBLAS from
-# oversubscribing them.
-export OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1}
+# ctest runs one test per core; one BLAS thread and one OpenMP thread each keep the threaded
+# OpenBLAS and the element loops from oversubscribing them.
+export OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1} OMP_NUM_THREADS=${OMP_NUM_THREADS:-1}
 status=0
 ctest --output-on-failure -j "$(nproc)" | tee ctest_output.log || status=$?
 if [ "$status" -ne 0 ]; then

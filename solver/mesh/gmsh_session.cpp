@@ -3,10 +3,11 @@
 #include <stdexcept>
 
 #include <gmsh.h>
+#include <omp.h>
 
 namespace needlefem {
 
-GmshSession::GmshSession(const std::string& model_name) {
+GmshSession::GmshSession(const std::string& model_name) : solver_threads_(omp_get_max_threads()) {
   gmsh::initialize(0, nullptr, /*readConfigFiles=*/false);
   gmsh::option::setNumber("General.Terminal", 0);
   gmsh::option::setNumber("General.Verbosity", 1);
@@ -15,7 +16,10 @@ GmshSession::GmshSession(const std::string& model_name) {
   gmsh::model::add(model_name);
 }
 
-GmshSession::~GmshSession() { gmsh::finalize(); }
+GmshSession::~GmshSession() {
+  gmsh::finalize();
+  omp_set_num_threads(solver_threads_);
+}
 
 void GmshSession::guarded(const std::function<void()>& body) {
   try {

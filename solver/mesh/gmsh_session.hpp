@@ -16,6 +16,11 @@ class GmshSession {
 
   // Runs `body`, rethrowing gmsh's std::string errors as std::runtime_error("gmsh: ...").
   static void guarded(const std::function<void()>& body);
+
+ private:
+  // gmsh's General.NumThreads sets the process's OpenMP thread count (omp_set_num_threads): the
+  // solver's element loops get back what they had once the session ends.
+  int solver_threads_ = 1;
 };
 
 }  // namespace needlefem

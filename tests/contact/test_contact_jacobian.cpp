@@ -3,13 +3,17 @@
 // frictional sphere (curvature terms) and a moving frictional plane (obstacle velocity), for
 // both friction laws. The return map's anchors sit where the face points were at t = 0, so the
 // jittered points at t stick or slip depending on how far the obstacle and the jitter moved them;
-// the test checks both branches occur and that the law has no velocity block.
+// the test checks both branches occur and that the law has no velocity block. Last, the Newton
+// matrix GMRES is preconditioned with (friction_pressure_coupling_in_newton_matrix = false):
+// positive semidefinite where the exact one is indefinite, with the same residual.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
 #include <random>
+#include <vector>
 
 #include "physics/contact/penalty_contact.hpp"
 #include "structured_block.hpp"
@@ -23,6 +27,20 @@ struct FdErrors {
   double slipping_area = 0.0;
   double velocity_block = 0.0;  // max |c_j ∂r/∂v| at c_j = 1
 };
+
+// Positions of a face's nodes jittered by ±20 µm about the mesh's and velocities of ±0.1 mm/s.
+void jittered_face_state(const TetMesh& mesh, const PenaltyContact& contact, std::size_t face, std::mt19937& generator,
+                         std::vector<double>& x, std::vector<double>& v) {
+  std::uniform_real_distribution<double> jitter(-1.0, 1.0);
+  const int m = contact.nodes_per_face();
+  x.resize(3 * m);
+  v.resize(3 * m);
+  for (int a = 0; a < m; ++a)
+    for (int c = 0; c < 3; ++c) {
+      x[3 * a + c] = mesh.nodes[contact.face_nodes(face)[a]][c] + 2e-5 * jitter(generator);
+      v[3 * a + c] = 1e-4 * jitter(generator);
+    }
+}
 
 // A 1 mm block's top face; the contact surface is "z_max". Its faces are perturbed so points
 // penetrate the obstacle by various depths and slide in various directions.
@@ -41,16 +59,11 @@ FdErrors compare_with_finite_differences(std::shared_ptr<const RigidObstacle> ob
   const PenaltyContact contact(mesh, "z_max", obstacle, parameters);
   EXPECT_EQ(contact.face_count(), 2u);
   std::mt19937 generator(7);
-  std::uniform_real_distribution<double> jitter(-1.0, 1.0);
   FdErrors errors;
   for (std::size_t face = 0; face < contact.face_count(); ++face) {
-    const int m = contact.nodes_per_face(), n = 3 * m;
-    std::vector<double> x(n), v(n);
-    for (int a = 0; a < m; ++a)
-      for (int c = 0; c < 3; ++c) {
-        x[3 * a + c] = mesh.nodes[contact.face_nodes(face)[a]][c] + 2e-5 * jitter(generator);
-        v[3 * a + c] = 1e-4 * jitter(generator);
-      }
+    const int n = 3 * contact.nodes_per_face();
+    std::vector<double> x, v;
+    jittered_face_state(mesh, contact, face, generator, x, v);
     const double cj = 1.0;  // the velocity part checked on its own below
     const FaceTerms exact_x = contact.face_terms(face, x.data(), v.data(), t, 0.0, true);
     const FaceTerms with_v = contact.face_terms(face, x.data(), v.data(), t, cj, true);
@@ -142,6 +155,53 @@ TEST(ContactJacobian, ReturnMapWithRateStrengtheningMatchesFiniteDifferences) {
     EXPECT_GT(errors.velocity_block, 0.0);
     EXPECT_LT(errors.position, 1e-6);
     EXPECT_LT(errors.velocity, 1e-6);
+  }
+}
+
+extern "C" void dsyev_(const char* jobz, const char* uplo, const int* n, double* a, const int* lda, double* w,
+                       double* work, const int* lwork, int* info);
+
+// Smallest and largest eigenvalue of the symmetric part of an n x n row-major matrix (LAPACK).
+std::pair<double, double> symmetric_part_eigenvalue_range(const std::vector<double>& matrix, int n) {
+  std::vector<double> sym(matrix.size()), eigenvalues(n), work(static_cast<std::size_t>(34 * n));
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) sym[i * n + j] = 0.5 * (matrix[i * n + j] + matrix[j * n + i]);
+  const int lwork = static_cast<int>(work.size());
+  int info = 0;
+  dsyev_("N", "U", &n, sym.data(), &n, eigenvalues.data(), work.data(), &lwork, &info);
+  EXPECT_EQ(info, 0);
+  return {eigenvalues.front(), eigenvalues.back()};
+}
+
+// Every point of the face slides on the flat translating plane (no curvature, no rotation): the
+// exact Newton matrix's symmetric part is indefinite through the unsymmetric μ p' ĝ nᵀ coupling
+// (the slip direction has no stiffness), which defeats a Cholesky factor; without the coupling
+// the matrix is a sum of positive semidefinite point terms. The residual does not change.
+TEST(ContactJacobian, PreconditioningMatrixWithoutPressureCouplingIsSemidefiniteWhereTheExactOneIsNot) {
+  const TetMesh mesh = structured_block({0.0, 1e-3}, {0.0, 1e-3}, {0.0, 1e-3});
+  ContactParameters parameters;
+  parameters.reference_modulus = 1000.0;
+  parameters.elastic_slip = 0.008;
+  parameters.rate_strengthening = 5.0;
+  const PenaltyContact exact(mesh, "z_max", tilted_moving_plane(), parameters);
+  parameters.friction_pressure_coupling_in_newton_matrix = false;
+  const PenaltyContact preconditioning(mesh, "z_max", tilted_moving_plane(), parameters);
+  std::mt19937 generator(11);
+  for (std::size_t face = 0; face < exact.face_count(); ++face) {
+    const int n = 3 * exact.nodes_per_face();
+    std::vector<double> x, v;
+    jittered_face_state(mesh, exact, face, generator, x, v);
+    const FaceTerms with_coupling = exact.face_terms(face, x.data(), v.data(), 0.5, 1.0, true);
+    const FaceTerms without = preconditioning.face_terms(face, x.data(), v.data(), 0.5, 1.0, true);
+    ASSERT_GT(with_coupling.contact_area, 0.0);
+    EXPECT_EQ(with_coupling.slipping_area, with_coupling.contact_area);
+    EXPECT_EQ(with_coupling.residual, without.residual);
+    const auto [exact_min, exact_max] = symmetric_part_eigenvalue_range(with_coupling.jacobian, n);
+    const auto [min, max] = symmetric_part_eigenvalue_range(without.jacobian, n);
+    std::printf("face %zu, symmetric part's eigenvalues: exact [%.3e, %.3e], without coupling [%.3e, %.3e]\n", face,
+                exact_min, exact_max, min, max);
+    EXPECT_LT(exact_min, -1e-2 * exact_max);
+    EXPECT_GT(min, -1e-12 * max);
   }
 }
 

@@ -106,7 +106,8 @@ SlipVelocity slip_velocity(const ObstacleProjection& p, const Point3& velocity, 
 // Return map with the allowed elastic slip s₀ (penalty_contact.hpp):
 //   t_T = -μ p g_T / max(s₀, |g_T|).
 Tangential return_map(const ObstacleProjection& p, const Point3& position, const Point3& anchor,
-                      const NormalPressure& normal, double mu, double allowed_slip, bool with_jacobian) {
+                      const NormalPressure& normal, double mu, double allowed_slip, bool with_jacobian,
+                      double pressure_coupling) {
   Tangential out;
   const Point3 r = difference(position, anchor), slip = tangential_part(p.normal, r);
   const double size = std::sqrt(dot(slip, slip));
@@ -122,7 +123,7 @@ Tangential return_map(const ObstacleProjection& p, const Point3& position, const
       if (out.slipping)
         for (int j = 0; j < 3; ++j) along_slip += slip[i] * slip[j] / (size * size) * D[3 * j + k];
       out.d_position[3 * i + k] =
-          mu * normal.stiffness * slip[i] / reach * p.normal[k] - scale * (D[3 * i + k] - along_slip);
+          pressure_coupling * mu * normal.stiffness * slip[i] / reach * p.normal[k] - scale * (D[3 * i + k] - along_slip);
     }
   return out;
 }
@@ -130,21 +131,21 @@ Tangential return_map(const ObstacleProjection& p, const Point3& position, const
 // Rate strengthening of the return map (penalty_contact.hpp), added to `out`: t = -β p_N v_T,
 // ∂t/∂x = -β p_N ∂v_T/∂x + β p' v_T nᵀ, ∂t/∂v = -β p_N P.
 void add_rate_strengthening(const ObstacleProjection& p, const Point3& velocity, const NormalPressure& normal,
-                            double beta, bool with_jacobian, Tangential& out) {
+                            double beta, bool with_jacobian, double pressure_coupling, Tangential& out) {
   const SlipVelocity slip = slip_velocity(p, velocity, with_jacobian);
   for (int i = 0; i < 3; ++i) out.traction[i] -= beta * normal.pressure * slip.tangential[i];
   if (!with_jacobian) return;
   for (int i = 0; i < 3; ++i)
     for (int k = 0; k < 3; ++k) {
       out.d_position[3 * i + k] += -beta * normal.pressure * slip.gradient[3 * i + k] +
-                                   beta * normal.stiffness * slip.tangential[i] * p.normal[k];
+                                   pressure_coupling * beta * normal.stiffness * slip.tangential[i] * p.normal[k];
       out.d_velocity[3 * i + k] += -beta * normal.pressure * ((i == k ? 1.0 : 0.0) - p.normal[i] * p.normal[k]);
     }
 }
 
 // Velocity-regularised Coulomb law (penalty_contact.hpp); tangent per `tangent`.
 Tangential velocity_law(const ObstacleProjection& p, const Point3& velocity, const NormalPressure& normal, double mu,
-                        double eps_v, FrictionTangent tangent, bool with_jacobian) {
+                        double eps_v, FrictionTangent tangent, bool with_jacobian, double pressure_coupling) {
   const double pressure = normal.pressure, normal_stiffness = normal.stiffness;
   Tangential out;
   const SlipVelocity slip_rate = slip_velocity(p, velocity, with_jacobian);
@@ -167,7 +168,7 @@ Tangential velocity_law(const ObstacleProjection& p, const Point3& velocity, con
         T_slip += T[3 * i + j] * slip_gradient[3 * j + k];
         T_P += T[3 * i + j] * ((j == k ? 1.0 : 0.0) - p.normal[j] * p.normal[k]);
       }
-      out.d_position[3 * i + k] = -T_slip + mu * normal_stiffness * slip[i] / s * p.normal[k];
+      out.d_position[3 * i + k] = -T_slip + pressure_coupling * mu * normal_stiffness * slip[i] / s * p.normal[k];
       out.d_velocity[3 * i + k] = -T_P;
     }
   return out;
@@ -192,6 +193,8 @@ ContactParameters contact_parameters_from_case(const Case& input, double referen
   p.friction_tangent =
       input.text("contact.friction_tangent") == "consistent" ? FrictionTangent::consistent : FrictionTangent::secant;
   p.friction_law = input.text("contact.friction_law") == "velocity" ? FrictionLaw::velocity : FrictionLaw::return_map;
+  // GMRES iterates on the exact Jacobian's action; the Newton matrix only preconditions it.
+  p.friction_pressure_coupling_in_newton_matrix = input.text("integration.newton") != "krylov";
   return p;
 }
 
@@ -263,14 +266,16 @@ FaceTerms PenaltyContact::face_terms(std::size_t face, const double* x, const do
     for (int a = 0; a < m; ++a)
       for (int c = 0; c < 3; ++c) velocity[c] += point.shape[a] * v[3 * a + c];
     Tangential tangential;
+    const double coupling = parameters_.friction_pressure_coupling_in_newton_matrix ? 1.0 : 0.0;
     if (parameters_.friction_law == FrictionLaw::return_map) {
       tangential = return_map(p, position, obstacle_->from_body(point.anchor, t), normal_law, mu,
-                              faces_[face].elastic_slip, with_jacobian);
+                              faces_[face].elastic_slip, with_jacobian, coupling);
       if (parameters_.rate_strengthening > 0.0)
-        add_rate_strengthening(p, velocity, normal_law, parameters_.rate_strengthening, with_jacobian, tangential);
+        add_rate_strengthening(p, velocity, normal_law, parameters_.rate_strengthening, with_jacobian, coupling,
+                               tangential);
     } else {
       tangential = velocity_law(p, velocity, normal_law, mu, parameters_.slip_velocity_regularisation,
-                                parameters_.friction_tangent, with_jacobian);
+                                parameters_.friction_tangent, with_jacobian, coupling);
     }
     Point3 traction;
     for (int i = 0; i < 3; ++i) traction[i] = pressure * normal[i] + tangential.traction[i];

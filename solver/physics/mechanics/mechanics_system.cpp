@@ -4,7 +4,11 @@
 #include "integration/petsc_arrays.hpp"
 
 #include <algorithm>
+#include <atomic>
+#include <numeric>
 #include <stdexcept>
+
+#include <omp.h>
 
 #include <fmt/format.h>
 
@@ -29,6 +33,29 @@ DaeStatus guarded(Body&& body) noexcept {
   }
 }
 
+
+// Runs body(k, out) for every element k = 0..elements-1 on the OpenMP threads, each thread adding
+// into its own zeroed copy of `out` (size values) except the first, which adds into `out`; the
+// copies are summed into `out` at the end. Elements sharing a node then never race, without a
+// colouring of the mesh. Static schedule: the same sums for the same thread count.
+template <class Body>
+void for_each_element_summed(std::size_t elements, double* out, std::size_t size, Body&& body) {
+#pragma omp parallel
+  {
+    std::vector<double> own;
+    double* target = out;
+    if (omp_get_thread_num() != 0) {
+      own.assign(size, 0.0);
+      target = own.data();
+    }
+#pragma omp for schedule(static)
+    for (std::size_t k = 0; k < elements; ++k) body(k, target);
+    if (!own.empty()) {
+#pragma omp critical(needlefem_element_sums)
+      for (std::size_t i = 0; i < size; ++i) out[i] += own[i];
+    }
+  }
+}
 
 elements::Formulation formulation_from_case(const Case& input) {
   return input.text("element.formulation") == "displacement" ? elements::Formulation::displacement
@@ -136,19 +163,24 @@ bool MechanicsSystem::assemble_internal(const double* y, const double* ydot, dou
                                         double* energy) const {
   const int n = mesh_.nodes_per_tet, terms = kernel_.prony_terms();
   const auto& prony = kernel_.prony();
-  std::array<double, 3 * 10> u_e{};
   std::fill(f_u, f_u + displacement_dofs(), 0.0);
-  if (energy) *energy = 0.0;
-  for (std::size_t k = 0; k < geometry_.size(); ++k) {
+  std::atomic<bool> inverted = false;
+  std::vector<double> element_energy(energy ? geometry_.size() : 0);
+  for_each_element_summed(geometry_.size(), f_u, displacement_dofs(), [&](std::size_t k, double* forces) {
+    if (inverted.load(std::memory_order_relaxed)) return;
+    std::array<double, 3 * 10> u_e{};
     gather_displacement(y, k, u_e.data());
     const double* q = terms ? y + viscous_offset(k) : nullptr;
     const elements::ElementResult element = kernel_.evaluate(geometry_[k], u_e.data(), q, false);
-    if (element.inverted) return false;
-    if (energy) *energy += element.energy;
+    if (element.inverted) {
+      inverted = true;
+      return;
+    }
+    if (energy) element_energy[k] = element.energy;
     const int* nodes = mesh_.tet(dofs_.tissue_tets[k]);
     for (int a = 0; a < n; ++a)
-      for (int c = 0; c < 3; ++c) f_u[dofs_.dof(nodes[a], c)] += element.residual[3 * a + c];
-    if (!f_q || !terms) continue;
+      for (int c = 0; c < 3; ++c) forces[dofs_.dof(nodes[a], c)] += element.residual[3 * a + c];
+    if (!f_q || !terms) return;
     // F_Q = Q' - (g S⁰ - Q)/τ, laid out like Q.
     const PetscInt offset = viscous_offset(k);
     for (int p = 0; p < geometry_[k].points; ++p)
@@ -158,8 +190,9 @@ bool MechanicsSystem::assemble_internal(const double* y, const double* ydot, dou
           f_q[row - displacement_dofs()] =
               ydot[row] - (prony[i].g * element.points[p].elastic_stress[m] - y[row]) / prony[i].tau_s;
         }
-  }
-  return true;
+  });
+  if (energy) *energy = std::accumulate(element_energy.begin(), element_energy.end(), 0.0);
+  return !inverted;
 }
 
 DaeStatus MechanicsSystem::residual(double t, Vec y, Vec ydot, Vec F) {
@@ -188,25 +221,38 @@ DaeStatus MechanicsSystem::setup_jacobian(double t, Vec y, Vec ydot, double cj) 
     ReadArray state(y), rate(ydot);
     const int n = mesh_.nodes_per_tet, terms = kernel_.prony_terms();
     const double scale = kernel_.condensed_tangent_scale(cj);
-    std::vector<double> u_e(3 * n);
     std::vector<PetscInt> block_indices(n);
     if (terms) condensation_.resize(geometry_.size() * geometry_.front().points);
     check(MatZeroEntries(jacobian_), "MatZeroEntries");
+    // Element matrices are evaluated on the OpenMP threads a batch at a time and inserted by
+    // this one (MatSetValues is not thread-safe); the batch bounds the memory they take.
+    constexpr std::size_t kBatch = 512;
+    std::vector<elements::ElementResult> batch(kBatch);
     bool inverted = false;
-    for (std::size_t k = 0; k < geometry_.size() && !inverted; ++k) {
-      gather_displacement(state.data(), k, u_e.data());
-      const double* q = terms ? state.data() + viscous_offset(k) : nullptr;
-      elements::ElementResult element = kernel_.evaluate(geometry_[k], u_e.data(), q, true, scale);
-      inverted = element.inverted;
-      if (inverted) break;
-      const int* nodes = mesh_.tet(dofs_.tissue_tets[k]);
-      for (int a = 0; a < n; ++a) block_indices[a] = dofs_.node_dof[nodes[a]] / 3;
-      check(MatSetValuesBlocked(jacobian_, n, block_indices.data(), n, block_indices.data(), element.stiffness.data(),
-                                ADD_VALUES),
-            "MatSetValuesBlocked");
-      if (terms)
-        std::move(element.points.begin(), element.points.end(),
-                  condensation_.begin() + static_cast<std::ptrdiff_t>(k * geometry_[k].points));
+    for (std::size_t first = 0; first < geometry_.size() && !inverted; first += kBatch) {
+      const std::size_t count = std::min(kBatch, geometry_.size() - first);
+#pragma omp parallel for schedule(static)
+      for (std::size_t i = 0; i < count; ++i) {
+        const std::size_t k = first + i;
+        std::array<double, 3 * 10> u_e{};
+        gather_displacement(state.data(), k, u_e.data());
+        const double* q = terms ? state.data() + viscous_offset(k) : nullptr;
+        batch[i] = kernel_.evaluate(geometry_[k], u_e.data(), q, true, scale);
+      }
+      for (std::size_t i = 0; i < count && !inverted; ++i) {
+        const std::size_t k = first + i;
+        elements::ElementResult& element = batch[i];
+        inverted = element.inverted;
+        if (inverted) break;
+        const int* nodes = mesh_.tet(dofs_.tissue_tets[k]);
+        for (int a = 0; a < n; ++a) block_indices[a] = dofs_.node_dof[nodes[a]] / 3;
+        check(MatSetValuesBlocked(jacobian_, n, block_indices.data(), n, block_indices.data(),
+                                  element.stiffness.data(), ADD_VALUES),
+              "MatSetValuesBlocked");
+        if (terms)
+          std::move(element.points.begin(), element.points.end(),
+                    condensation_.begin() + static_cast<std::ptrdiff_t>(k * geometry_[k].points));
+      }
     }
     if (!inverted)
       for (const auto& load : surface_loads_) load->add_jacobian(t, state.data(), rate.data(), cj, dofs_, jacobian_);
@@ -248,9 +294,8 @@ DaeStatus MechanicsSystem::solve_jacobian(Vec b, Vec x) {
       WriteArray rhs(rhs_);
       double* r = rhs.data();
       std::copy(in.data(), in.data() + nu, r);
-      std::array<double, 3 * 10> force{};
-      for (std::size_t k = 0; terms && k < geometry_.size(); ++k) {
-        std::fill(force.begin(), force.end(), 0.0);
+      for_each_element_summed(terms ? geometry_.size() : 0, r, nu, [&](std::size_t k, double* sums) {
+        std::array<double, 3 * 10> force{};
         for (int p = 0; p < geometry_[k].points; ++p) {
           // w Bᵀ Σ_i b_Qi / (cj + 1/τ_i).
           std::array<double, elements::kVoigt> source{};
@@ -265,9 +310,9 @@ DaeStatus MechanicsSystem::solve_jacobian(Vec b, Vec x) {
         for (int a = 0; a < n; ++a)
           for (int c = 0; c < 3; ++c) {
             const int dof = dofs_.dof(nodes[a], c);
-            if (!prescribed_[dof]) r[dof] += force[3 * a + c];
+            if (!prescribed_[dof]) sums[dof] += force[3 * a + c];
           }
-      }
+      });
     }
     if (cholesky_factored_)
       cholesky_->solve(rhs_, solution_);
@@ -279,8 +324,10 @@ DaeStatus MechanicsSystem::solve_jacobian(Vec b, Vec x) {
     ReadArray in(b), x_u(solution_);
     WriteArray out(x);
     std::copy(x_u.data(), x_u.data() + nu, out.data());
-    std::array<double, 3 * 10> u_e{};
-    for (std::size_t k = 0; terms && k < geometry_.size(); ++k) {
+    const std::size_t elements = terms ? geometry_.size() : 0;
+#pragma omp parallel for schedule(static)
+    for (std::size_t k = 0; k < elements; ++k) {
+      std::array<double, 3 * 10> u_e{};
       gather_displacement(x_u.data(), k, u_e.data());
       for (int p = 0; p < geometry_[k].points; ++p) {
         const elements::PointResponse& point = condensation_[k * geometry_[k].points + p];

@@ -23,7 +23,8 @@
 //   K̂ x_u = b_u + Σ_q w_q B_qᵀ Σ_i b_Qi / (c_j + 1/τ_i)     (free rows only),
 //   x_Qi = (b_Qi + (g_i/τ_i) D⁰_q B_q x_u) / (c_j + 1/τ_i).
 // A non-positive det F anywhere gives DaeStatus::recoverable (IDA cuts the step); so does a
-// failed factorisation. Serial (one rank) for now: PETSc objects live on PETSC_COMM_SELF.
+// failed factorisation. One rank: PETSc objects live on PETSC_COMM_SELF; the element loops of residuals,
+// Newton matrices and the condensation run on the OpenMP threads (OMP_NUM_THREADS).
 #pragma once
 
 #include <memory>
