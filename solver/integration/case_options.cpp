@@ -27,6 +27,7 @@ KspOptions ksp_options_from_case(const Case& c, const std::string& prefix) {
   options.method = c.text("integration.linear_solver");
   options.relative_tolerance = c.real("integration.linear_relative_tolerance");
   options.prefix = prefix;
+  options.preconditioner_only = c.text("integration.newton") == "krylov";
   return options;
 }
 

@@ -29,6 +29,9 @@ struct KspOptions {
   double relative_tolerance = 1e-10;
   int max_iterations = 1000;
   std::string prefix = "nf_";
+  // The solves only precondition an outer iteration (integration.newton = "krylov": IDA's
+  // GMRES on the exact Jacobian's action), so "cholmod" may solve in single precision.
+  bool preconditioner_only = false;
 };
 
 class KspSolver {

@@ -17,6 +17,13 @@
 //
 // The ordering and the symbolic factorisation are computed at the first factor() and reused
 // while the matrix keeps its number of entries (its pattern); a changed pattern starts afresh.
+//
+// Precision::single_solves keeps a single-precision copy of the supernodal factor and solves
+// with it (forward and back substitution supernode by supernode, BLAS strsv/sgemv, as CHOLMOD's
+// own double-precision solve does). For solves that precondition an iteration (IDA's GMRES), not
+// for exact ones: the solution carries a relative error of about κ(S_ff) × 6e-8. Why: a solve
+// reads the whole factor twice and is memory-bound; half the bytes, about half the time (0.4 mm
+// brain-tip factor, 36.8 M entries: see README "Speed").
 #pragma once
 
 #include <string>
@@ -33,8 +40,9 @@ namespace needlefem {
 
 class SparseCholesky {
  public:
+  enum class Precision { double_solves, single_solves };
   // prescribed[i] != 0 marks unknown i as given (its row is not factored).
-  explicit SparseCholesky(std::vector<char> prescribed);
+  explicit SparseCholesky(std::vector<char> prescribed, Precision precision = Precision::double_solves);
   ~SparseCholesky();
   SparseCholesky(const SparseCholesky&) = delete;
   SparseCholesky& operator=(const SparseCholesky&) = delete;
@@ -54,6 +62,8 @@ class SparseCholesky {
  private:
   void analyse(Mat A);  // ordering, symbolic factorisation and the index maps of A's pattern
   void release();
+  // Precision::single_solves: x = S_ff⁻¹ r on the free unknowns with single_factor_.
+  void solve_single(const double* r, double* x);
 
   std::vector<char> prescribed_;
   std::vector<PetscInt> free_index_;  // per unknown: its index among the free ones, or -1
@@ -66,6 +76,9 @@ class SparseCholesky {
   };
   std::vector<Coupling> couplings_;
   Mat matrix_ = nullptr;  // the A of the last factor()
+  Precision precision_;
+  std::vector<float> single_factor_;      // the supernodal factor's values, single precision
+  std::vector<float> single_work_, single_gather_;
 
   cholmod_common_struct* common_ = nullptr;
   cholmod_sparse_struct* lower_ = nullptr;

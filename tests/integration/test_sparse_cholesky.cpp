@@ -115,6 +115,22 @@ TEST(SparseCholesky, SymmetricMatrixWithPrescribedRowsSolvesExactly) {
   MatDestroy(&A);
 }
 
+// The single-precision solve (for preconditioning) agrees with LU to single precision: well
+// below the 1e-5 of a preconditioner's needs, and well above double precision's round-off (it
+// really is the float copy that solves).
+TEST(SparseCholesky, SinglePrecisionSolveAgreesToSinglePrecision) {
+  Mat A = grid_matrix(9.0, 0.0);
+  SparseCholesky cholesky(prescribe_rows(A), SparseCholesky::Precision::single_solves);
+  ASSERT_TRUE(cholesky.factor(A)) << cholesky.last_failure();
+  Vec b = right_hand_side(), reference = lu_solve(A, b), x = cholesky_solve(cholesky, b);
+  const double error = relative_difference(x, reference);
+  std::printf("single-precision solves: |x - x_LU| / |x_LU| = %.2e\n", error);
+  EXPECT_LT(error, 1e-5);
+  EXPECT_GT(error, 1e-10);
+  for (Vec v : {b, reference, x}) VecDestroy(&v);
+  MatDestroy(&A);
+}
+
 TEST(SparseCholesky, UnsymmetricMatrixSolvesWithItsSymmetricFreeBlock) {
   Mat A = grid_matrix(9.0, 0.3);
   const std::vector<char> prescribed = prescribe_rows(A);
