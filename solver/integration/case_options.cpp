@@ -28,6 +28,8 @@ KspOptions ksp_options_from_case(const Case& c, const std::string& prefix) {
   options.relative_tolerance = c.real("integration.linear_relative_tolerance");
   options.prefix = prefix;
   options.preconditioner_only = c.text("integration.newton") == "krylov";
+  options.symmetric_preconditioner =
+      options.preconditioner_only && c.text("integration.krylov_preconditioner") == "symmetric";
   return options;
 }
 

@@ -32,6 +32,10 @@ struct KspOptions {
   // The solves only precondition an outer iteration (integration.newton = "krylov": IDA's
   // GMRES on the exact Jacobian's action), so "cholmod" may solve in single precision.
   bool preconditioner_only = false;
+  // ... and may then be factored from a symmetric positive definite approximation of the
+  // Newton matrix (integration.krylov_preconditioner = "symmetric"; NewtonMatrix in
+  // physics/mechanics/surface_load.hpp).
+  bool symmetric_preconditioner = false;
 };
 
 class KspSolver {

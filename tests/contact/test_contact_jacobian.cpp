@@ -4,7 +4,7 @@
 // both friction laws. The return map's anchors sit where the face points were at t = 0, so the
 // jittered points at t stick or slip depending on how far the obstacle and the jitter moved them;
 // the test checks both branches occur and that the law has no velocity block. Last, the Newton
-// matrix GMRES is preconditioned with (friction_pressure_coupling_in_newton_matrix = false):
+// matrix GMRES is preconditioned with (NewtonMatrix::symmetric_preconditioner):
 // positive semidefinite where the exact one is indefinite, with the same residual.
 #include <gtest/gtest.h>
 
@@ -183,16 +183,15 @@ TEST(ContactJacobian, PreconditioningMatrixWithoutPressureCouplingIsSemidefinite
   parameters.reference_modulus = 1000.0;
   parameters.elastic_slip = 0.008;
   parameters.rate_strengthening = 5.0;
-  const PenaltyContact exact(mesh, "z_max", tilted_moving_plane(), parameters);
-  parameters.friction_pressure_coupling_in_newton_matrix = false;
-  const PenaltyContact preconditioning(mesh, "z_max", tilted_moving_plane(), parameters);
+  const PenaltyContact contact(mesh, "z_max", tilted_moving_plane(), parameters);
   std::mt19937 generator(11);
-  for (std::size_t face = 0; face < exact.face_count(); ++face) {
-    const int n = 3 * exact.nodes_per_face();
+  for (std::size_t face = 0; face < contact.face_count(); ++face) {
+    const int n = 3 * contact.nodes_per_face();
     std::vector<double> x, v;
-    jittered_face_state(mesh, exact, face, generator, x, v);
-    const FaceTerms with_coupling = exact.face_terms(face, x.data(), v.data(), 0.5, 1.0, true);
-    const FaceTerms without = preconditioning.face_terms(face, x.data(), v.data(), 0.5, 1.0, true);
+    jittered_face_state(mesh, contact, face, generator, x, v);
+    const FaceTerms with_coupling = contact.face_terms(face, x.data(), v.data(), 0.5, 1.0, true);
+    const FaceTerms without = contact.face_terms(face, x.data(), v.data(), 0.5, 1.0, true, {},
+                                                 mechanics::NewtonMatrix::symmetric_preconditioner);
     ASSERT_GT(with_coupling.contact_area, 0.0);
     EXPECT_EQ(with_coupling.slipping_area, with_coupling.contact_area);
     EXPECT_EQ(with_coupling.residual, without.residual);

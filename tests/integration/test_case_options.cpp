@@ -18,6 +18,21 @@ TEST(IntegrationCaseOptions, DefaultsAreIdaDefaultsAndSparseCholesky) {
   const KspOptions ksp = ksp_options_from_case(c);
   EXPECT_EQ(ksp.method, "cholmod");
   EXPECT_EQ(ksp.prefix, "nf_");
+  // Newton-Krylov: the factor only preconditions (single-precision solves), with the exact matrix.
+  EXPECT_TRUE(ksp.preconditioner_only);
+  EXPECT_FALSE(ksp.symmetric_preconditioner);
+}
+
+TEST(IntegrationCaseOptions, SymmetricPreconditionerOnlyWhereTheMatrixPreconditions) {
+  const KspOptions krylov =
+      ksp_options_from_case(Case::parse("[integration]\nkrylov_preconditioner = \"symmetric\"\n", "inline"));
+  EXPECT_TRUE(krylov.preconditioner_only);
+  EXPECT_TRUE(krylov.symmetric_preconditioner);
+  // Modified Newton solves with the matrix itself: neither applies.
+  const KspOptions modified = ksp_options_from_case(Case::parse(
+      "[integration]\nkrylov_preconditioner = \"symmetric\"\nnewton = \"modified\"\n", "inline"));
+  EXPECT_FALSE(modified.preconditioner_only);
+  EXPECT_FALSE(modified.symmetric_preconditioner);
 }
 
 TEST(IntegrationCaseOptions, GivenKeysAndOverridesAreUsed) {

@@ -193,8 +193,6 @@ ContactParameters contact_parameters_from_case(const Case& input, double referen
   p.friction_tangent =
       input.text("contact.friction_tangent") == "consistent" ? FrictionTangent::consistent : FrictionTangent::secant;
   p.friction_law = input.text("contact.friction_law") == "velocity" ? FrictionLaw::velocity : FrictionLaw::return_map;
-  // GMRES iterates on the exact Jacobian's action; the Newton matrix only preconditions it.
-  p.friction_pressure_coupling_in_newton_matrix = input.text("integration.newton") != "krylov";
   return p;
 }
 
@@ -243,7 +241,8 @@ PenaltyContact::PenaltyContact(const TetMesh& mesh, const std::string& surface,
 }
 
 FaceTerms PenaltyContact::face_terms(std::size_t face, const double* x, const double* v, double t, double cj,
-                                     bool with_jacobian, const Point3& moment_point) const {
+                                     bool with_jacobian, const Point3& moment_point,
+                                     mechanics::NewtonMatrix form) const {
   const int m = nodes_per_face_, n = 3 * m;
   const double mu = parameters_.friction_coefficient;
   const double penalty = faces_[face].penalty;
@@ -266,7 +265,7 @@ FaceTerms PenaltyContact::face_terms(std::size_t face, const double* x, const do
     for (int a = 0; a < m; ++a)
       for (int c = 0; c < 3; ++c) velocity[c] += point.shape[a] * v[3 * a + c];
     Tangential tangential;
-    const double coupling = parameters_.friction_pressure_coupling_in_newton_matrix ? 1.0 : 0.0;
+    const double coupling = form == mechanics::NewtonMatrix::exact ? 1.0 : 0.0;
     if (parameters_.friction_law == FrictionLaw::return_map) {
       tangential = return_map(p, position, obstacle_->from_body(point.anchor, t), normal_law, mu,
                               faces_[face].elastic_slip, with_jacobian, coupling);
@@ -379,12 +378,12 @@ void PenaltyContact::add_residual(double t, const double* y, const double* ydot,
 }
 
 void PenaltyContact::add_jacobian(double t, const double* y, const double* ydot, double cj,
-                                  const mechanics::DofMap& dofs, Mat jacobian) const {
+                                  const mechanics::DofMap& dofs, Mat jacobian, mechanics::NewtonMatrix form) const {
   std::vector<double> x(3 * nodes_per_face_), v(3 * nodes_per_face_);
   std::vector<PetscInt> blocks(nodes_per_face_);
   for (std::size_t f = 0; f < faces_.size(); ++f) {
     gather(f, y, ydot, dofs, x.data(), v.data());
-    const FaceTerms terms = face_terms(f, x.data(), v.data(), t, cj, true);
+    const FaceTerms terms = face_terms(f, x.data(), v.data(), t, cj, true, {}, form);
     if (terms.contact_area == 0.0) continue;
     for (int a = 0; a < nodes_per_face_; ++a) blocks[a] = dofs.node_dof[face_nodes(f)[a]] / 3;
     const PetscErrorCode code = MatSetValuesBlocked(jacobian, nodes_per_face_, blocks.data(), nodes_per_face_,

@@ -138,16 +138,6 @@ struct ContactParameters {
   // 0.5 mm needle, a penalty pressure of ~c μ₀ g/h that would pre-stress the tissue and give IDA
   // an inconsistent start). The offsets shrink with the faces' interpolation error (~h³/R²).
   bool reference_gap_offset = false;
-  // Keep the friction traction's dependence on the normal gap, μ p' ĝ nᵀ (return map; μ p' v_T/s nᵀ
-  // for the velocity law) and β p' v_T nᵀ (rate strengthening), in the Newton matrix. false drops
-  // them: for integration.newton = "krylov", where that matrix only preconditions GMRES on the exact
-  // Jacobian's action. Why: these terms are the unsymmetric coupling of size μ ε_N between the
-  // normal and the slip direction, whose stiffness is zero in slip, so the matrix's symmetric part
-  // is indefinite as soon as points slide and the sparse Cholesky factor fails (LU instead, 2x the
-  // factor and solve time). Without them it stays positive definite: default Table I case
-  // (0.4 mm, 0.1 s) 10 Cholesky factorisations instead of 5 Cholesky + 7 LU, 616 GMRES iterations
-  // instead of 726, the same maxima within 0.5 % (the Newton tolerance).
-  bool friction_pressure_coupling_in_newton_matrix = true;
 };
 
 // Normal pressure p_N(d) and its slope dp_N/dd at penetration d = -g >= 0 (the smoothed law above;
@@ -190,8 +180,19 @@ class PenaltyContact final : public mechanics::SurfaceLoad {
   double elastic_slip(std::size_t face) const { return faces_[face].elastic_slip; }
 
   // One face's terms at current positions x (3m) and velocities v (3m) of its nodes.
+  // NewtonMatrix::symmetric_preconditioner leaves the friction traction's dependence on the
+  // normal gap out of the Jacobian: μ p' ĝ nᵀ (return map; μ p' v_T/s nᵀ for the velocity law)
+  // and β p' v_T nᵀ (rate strengthening). Why: they are an unsymmetric coupling of size μ ε_N
+  // between the normal and the slip direction, whose stiffness is zero in slip, so the matrix's
+  // symmetric part is indefinite as soon as points slide and a Cholesky factor fails (LU
+  // instead: 2x the factor and solve time). Without them it stays positive definite (test:
+  // tests/contact/test_contact_jacobian.cpp), and GMRES on the exact Jacobian's action makes up
+  // the difference: default Table I case 11 Cholesky factorisations instead of 5 + 7 LU,
+  // 674 GMRES iterations instead of 726, the same maxima within 0.1 %; but less robust at hard
+  // stick/slip events (integration.krylov_preconditioner, whose default is the exact matrix).
   FaceTerms face_terms(std::size_t face, const double* x, const double* v, double t, double cj, bool with_jacobian,
-                       const Point3& moment_point = {}) const;
+                       const Point3& moment_point = {},
+                       mechanics::NewtonMatrix form = mechanics::NewtonMatrix::exact) const;
 
   ContactResultant resultant(double t, const double* y, const double* ydot, const mechanics::DofMap& dofs,
                              const Point3& moment_point = {}) const;
@@ -199,7 +200,7 @@ class PenaltyContact final : public mechanics::SurfaceLoad {
   void add_residual(double t, const double* y, const double* ydot, const mechanics::DofMap& dofs,
                     double* f_u) const override;
   void add_jacobian(double t, const double* y, const double* ydot, double cj, const mechanics::DofMap& dofs,
-                    Mat jacobian) const override;
+                    Mat jacobian, mechanics::NewtonMatrix form) const override;
   // Return map: moves every point's anchor to what the accepted state (t, y) leaves it.
   void accept_step(double t, const double* y, const double* ydot, const mechanics::DofMap& dofs) override;
 

@@ -112,6 +112,7 @@ MechanicsSystem::MechanicsSystem(const TetMesh& mesh, const material::Material& 
   if (!workspace_given)
     check(PetscOptionsSetValue(nullptr, ("-" + solver_options.prefix + "mat_mumps_icntl_14").c_str(), "100"),
           "PetscOptionsSetValue");
+  symmetric_preconditioner_ = solver_options.symmetric_preconditioner;
   KspOptions ksp_options = solver_options;
   if (solver_options.method == "cholmod") {
     cholesky_ = std::make_unique<SparseCholesky>(prescribed_, solver_options.preconditioner_only
@@ -256,8 +257,10 @@ DaeStatus MechanicsSystem::setup_jacobian(double t, Vec y, Vec ydot, double cj) 
                     condensation_.begin() + static_cast<std::ptrdiff_t>(k * geometry_[k].points));
       }
     }
+    const NewtonMatrix form = symmetric_preconditioner_ ? NewtonMatrix::symmetric_preconditioner : NewtonMatrix::exact;
     if (!inverted)
-      for (const auto& load : surface_loads_) load->add_jacobian(t, state.data(), rate.data(), cj, dofs_, jacobian_);
+      for (const auto& load : surface_loads_)
+        load->add_jacobian(t, state.data(), rate.data(), cj, dofs_, jacobian_, form);
     check(MatAssemblyBegin(jacobian_, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
     check(MatAssemblyEnd(jacobian_, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
     if (inverted) {

@@ -148,6 +148,9 @@ class MechanicsSystem final : public DaeSystem {
   bool cholesky_factored_ = false;            // which of the two holds the last factorisation
   static constexpr int kCholeskySkipsAfterIndefinite = 3;
   int cholesky_skips_left_ = 0;  // setups that go straight to LU after an indefinite one
+  // KspOptions::symmetric_preconditioner (Krylov Newton): setups assemble
+  // NewtonMatrix::symmetric_preconditioner, positive definite and cheap to factor and solve.
+  bool symmetric_preconditioner_ = false;
   Vec rhs_ = nullptr, solution_ = nullptr;
 };
 

@@ -13,6 +13,12 @@
 
 namespace needlefem::mechanics {
 
+// What a Newton matrix is for: the exact ∂F/∂y + c_j ∂F/∂y' (modified Newton; the Krylov
+// Newton's preconditioner by default), or only the preconditioner of GMRES on the exact
+// Jacobian's action, where a load may leave out terms that spoil the positive definiteness of
+// the matrix's symmetric part (penalty_contact.hpp: friction's pressure coupling).
+enum class NewtonMatrix { exact, symmetric_preconditioner };
+
 class SurfaceLoad {
  public:
   virtual ~SurfaceLoad() = default;
@@ -20,7 +26,7 @@ class SurfaceLoad {
   virtual void add_residual(double t, const double* y, const double* ydot, const DofMap& dofs, double* f_u) const = 0;
   // Adds 3 x 3 node blocks with MatSetValuesBlocked (block index = node_dof / 3, ADD_VALUES).
   virtual void add_jacobian(double t, const double* y, const double* ydot, double cj, const DofMap& dofs,
-                            Mat jacobian) const = 0;
+                            Mat jacobian, NewtonMatrix form) const = 0;
   // Called once per step the integrator accepts, with its state: loads with history (friction
   // anchors) update it here. Residuals in between see the history of the last accepted step.
   virtual void accept_step(double /*t*/, const double* /*y*/, const double* /*ydot*/, const DofMap& /*dofs*/) {}
