@@ -143,6 +143,9 @@ class MechanicsSystem final : public DaeSystem {
   double cj_ = 0.0;
   std::vector<elements::PointResponse> condensation_;  // per element and point (viscous only)
   Mat jacobian_ = nullptr;
+  // Per tissue element, a, i, b: where entry (3 r_a + i, 3 c_b) of its blocks sits in the
+  // jacobian_'s CSR values (the pattern is fixed at construction).
+  std::vector<PetscInt> value_positions_;
   std::unique_ptr<SparseCholesky> cholesky_;  // integration.linear_solver = "cholmod" only
   std::unique_ptr<KspSolver> solver_;         // the method, or LU when the Cholesky one fails
   bool cholesky_factored_ = false;            // which of the two holds the last factorisation
