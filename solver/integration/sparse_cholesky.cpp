@@ -138,6 +138,12 @@ void SparseCholesky::analyse(Mat A) {
   cholmod_check(factor_ != nullptr, *common_, "analyze");
   rhs_ = cholmod_zeros(free_count, 1, CHOLMOD_REAL, common_);
   cholmod_check(rhs_ != nullptr, *common_, "zeros");
+  if (precision_ == Precision::single_solves) {  // cholmod_solve2 allocates its own at the first solve
+    solution_ = cholmod_zeros(free_count, 1, CHOLMOD_REAL, common_);
+    cholmod_check(solution_ != nullptr, *common_, "zeros");
+    single_work_.resize(free_count);
+    single_gather_.resize(factor_->maxesize);
+  }
   entries_ = row_start[n];
 }
 
@@ -185,8 +191,6 @@ void SparseCholesky::solve_single(const double* r, double* x) {
   const int* value_start = static_cast<const int*>(L.px);
   const int* rows = static_cast<const int*>(L.s);
   const auto supernodes = static_cast<int>(L.nsuper);
-  single_work_.resize(n);
-  single_gather_.resize(L.maxesize > 0 ? L.maxesize : n);
   float* y = single_work_.data();
   float* gathered = single_gather_.data();
   for (std::size_t k = 0; k < n; ++k) y[k] = static_cast<float>(r[perm[k]]);  // y = P r
@@ -230,8 +234,6 @@ void SparseCholesky::solve(Vec b, Vec x) {
     for (const Coupling& c : couplings_) r[c.free_row] -= values.data()[c.entry] * in.data()[c.column];
   }
   if (precision_ == Precision::single_solves) {
-    if (!solution_) solution_ = cholmod_zeros(rhs_->nrow, 1, CHOLMOD_REAL, common_);
-    cholmod_check(solution_ != nullptr, *common_, "zeros");
     solve_single(static_cast<const double*>(rhs_->x), static_cast<double*>(solution_->x));
   } else {
     cholmod_check(

@@ -246,6 +246,7 @@ FaceTerms PenaltyContact::face_terms(std::size_t face, const double* x, const do
   const int m = nodes_per_face_, n = 3 * m;
   const double mu = parameters_.friction_coefficient;
   const double penalty = faces_[face].penalty;
+  const double coupling = form == mechanics::NewtonMatrix::exact ? 1.0 : 0.0;  // friction's pressure coupling
   FaceTerms out;
   out.residual.assign(n, 0.0);
   if (with_jacobian) out.jacobian.assign(static_cast<std::size_t>(n) * n, 0.0);
@@ -265,7 +266,6 @@ FaceTerms PenaltyContact::face_terms(std::size_t face, const double* x, const do
     for (int a = 0; a < m; ++a)
       for (int c = 0; c < 3; ++c) velocity[c] += point.shape[a] * v[3 * a + c];
     Tangential tangential;
-    const double coupling = form == mechanics::NewtonMatrix::exact ? 1.0 : 0.0;
     if (parameters_.friction_law == FrictionLaw::return_map) {
       tangential = return_map(p, position, obstacle_->from_body(point.anchor, t), normal_law, mu,
                               faces_[face].elastic_slip, with_jacobian, coupling);

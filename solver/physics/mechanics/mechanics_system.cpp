@@ -123,16 +123,18 @@ MechanicsSystem::MechanicsSystem(const TetMesh& mesh, const material::Material& 
     // Position of entry (3 r_a + i, 3 c_b) in the values, for blocks (a, b) and rows i; the
     // three columns of a block follow it.
     value_positions_.resize(dofs_.tissue_tets.size() * static_cast<std::size_t>(3 * n * n));
-    for (std::size_t k = 0; k < dofs_.tissue_tets.size(); ++k)
+    for (std::size_t k = 0; k < dofs_.tissue_tets.size(); ++k) {
+      const int* nodes = mesh.tet(dofs_.tissue_tets[k]);
       for (int a = 0; a < n; ++a)
         for (int i = 0; i < 3; ++i) {
-          const PetscInt row = dofs_.node_dof[mesh.tet(dofs_.tissue_tets[k])[a]] + i;
+          const PetscInt row = dofs_.node_dof[nodes[a]] + i;
           for (int b = 0; b < n; ++b) {
-            const PetscInt column = dofs_.node_dof[mesh.tet(dofs_.tissue_tets[k])[b]];
+            const PetscInt column = dofs_.node_dof[nodes[b]];
             const PetscInt* found = std::lower_bound(columns + row_start[row], columns + row_start[row + 1], column);
             value_positions_[(k * n + a) * 3 * n + 3 * b + i] = found - columns;
           }
         }
+    }
     check(MatRestoreRowIJ(jacobian_, 0, PETSC_FALSE, PETSC_FALSE, &rows, &row_start, &columns, &done),
           "MatRestoreRowIJ");
   }
@@ -263,32 +265,49 @@ DaeStatus MechanicsSystem::setup_jacobian(double t, Vec y, Vec ydot, double cj) 
     {
       PetscScalar* values = nullptr;
       check(MatSeqAIJGetArray(jacobian_, &values), "MatSeqAIJGetArray");
-#pragma omp parallel for schedule(static)
-      for (std::size_t k = 0; k < geometry_.size(); ++k) {
-        if (inverted.load(std::memory_order_relaxed)) continue;
-        std::array<double, 3 * 10> u_e{};
-        gather_displacement(state.data(), k, u_e.data());
-        const double* q = terms ? state.data() + viscous_offset(k) : nullptr;
-        elements::ElementResult element = kernel_.evaluate(geometry_[k], u_e.data(), q, true, scale);
-        if (element.inverted) {
-          inverted = true;
-          continue;
-        }
-        // Elements sharing nodes add into the same entries: atomically.
-        const PetscInt* positions = value_positions_.data() + k * 3 * n * n;
-        for (int a = 0; a < n; ++a)
-          for (int i = 0; i < 3; ++i)
-            for (int b = 0; b < n; ++b) {
-              const double* row = element.stiffness.data() + static_cast<std::size_t>(3 * a + i) * 3 * n + 3 * b;
-              PetscScalar* target = values + positions[(a * n + b) * 3 + i];
-              for (int j = 0; j < 3; ++j) {
-#pragma omp atomic
-                target[j] += row[j];
+      // A batch of element matrices is evaluated on the threads, then added by the threads each
+      // owning a range of rows, element by element: every entry sums its elements in mesh order,
+      // so the matrix does not depend on the thread count or timing (atomic adds would).
+      constexpr std::size_t kBatch = 1024;
+      std::vector<elements::ElementResult> batch(kBatch);
+      const auto rows = static_cast<std::size_t>(displacement_dofs());
+      for (std::size_t first = 0; first < geometry_.size() && !inverted; first += kBatch) {
+        const std::size_t count = std::min(kBatch, geometry_.size() - first);
+#pragma omp parallel
+        {
+#pragma omp for schedule(static)
+          for (std::size_t e = 0; e < count; ++e) {
+            const std::size_t k = first + e;
+            std::array<double, 3 * 10> u_e{};
+            gather_displacement(state.data(), k, u_e.data());
+            const double* q = terms ? state.data() + viscous_offset(k) : nullptr;
+            batch[e] = kernel_.evaluate(geometry_[k], u_e.data(), q, true, scale);
+            if (batch[e].inverted) inverted = true;
+          }  // implicit barrier: the batch is complete
+          const auto threads = static_cast<std::size_t>(omp_get_num_threads());
+          const auto thread = static_cast<std::size_t>(omp_get_thread_num());
+          const std::size_t row_begin = rows * thread / threads, row_end = rows * (thread + 1) / threads;
+          for (std::size_t e = 0; e < count && !inverted; ++e) {
+            const std::size_t k = first + e;
+            const int* nodes = mesh_.tet(dofs_.tissue_tets[k]);
+            const PetscInt* positions = value_positions_.data() + k * 3 * n * n;
+            for (int a = 0; a < n; ++a)
+              for (int i = 0; i < 3; ++i) {
+                const auto row_index = static_cast<std::size_t>(dofs_.node_dof[nodes[a]] + i);
+                if (row_index < row_begin || row_index >= row_end) continue;
+                const double* row = batch[e].stiffness.data() + static_cast<std::size_t>(3 * a + i) * 3 * n;
+                for (int b = 0; b < n; ++b) {
+                  PetscScalar* target = values + positions[(a * n + b) * 3 + i];
+                  for (int j = 0; j < 3; ++j) target[j] += row[3 * b + j];
+                }
               }
-            }
-        if (terms)
-          std::move(element.points.begin(), element.points.end(),
-                    condensation_.begin() + static_cast<std::ptrdiff_t>(k * geometry_[k].points));
+          }
+#pragma omp for schedule(static)
+          for (std::size_t e = 0; e < count; ++e)
+            if (terms && !inverted)
+              std::move(batch[e].points.begin(), batch[e].points.end(),
+                        condensation_.begin() + static_cast<std::ptrdiff_t>((first + e) * geometry_[first + e].points));
+        }
       }
       check(MatSeqAIJRestoreArray(jacobian_, &values), "MatSeqAIJRestoreArray");
     }
