@@ -44,12 +44,18 @@ void add_case_command(CLI::App& app, const std::string& name, const std::string&
 
 int main(int argc, char** argv) {
   using namespace needlefem;
-  // libgomp reads OMP_WAIT_POLICY once, when it loads. By default its idle threads spin, and with
-  // as many threads as cores they then take the cores from OpenBLAS's threads, which spin too
-  // between calls (measured, tied brain-tip benchmark on 2 cores: 42.7 s against 35.9 s with
-  // "passive"). Unless the user chose a policy, start again with the passive one.
-  if (!std::getenv("OMP_WAIT_POLICY") && setenv("OMP_WAIT_POLICY", "passive", 1) == 0)
-    execv("/proc/self/exe", argv);  // returns only on failure: then run on with the default
+  // libgomp reads OMP_WAIT_POLICY, and OpenBLAS OPENBLAS_NUM_THREADS, once, when they load. Idle
+  // threads of both spin by default and take the cores from the threads with work: OpenBLAS's
+  // after every call, even a vector operation of PETSc's. The element loops and the Cholesky
+  // factor thread with OpenMP themselves, so BLAS runs on one thread. Measured on 2 cores: tied
+  // brain-tip benchmark 42.7 s with spinning OpenMP threads against 35.9 s passive (before the
+  // single-precision factor), then 22.1 s with two OpenBLAS threads against 20.5 s with one; the
+  // default frictional case, whose MUMPS LU factorisations lose BLAS's threads, 60.3 against
+  // 56.1 s. Unless the user chose them, start again with these settings.
+  bool restart = false;
+  for (const auto& [variable, value] : {std::pair{"OMP_WAIT_POLICY", "passive"}, std::pair{"OPENBLAS_NUM_THREADS", "1"}})
+    if (!std::getenv(variable)) restart = setenv(variable, value, 1) == 0 || restart;
+  if (restart) execv("/proc/self/exe", argv);  // returns only on failure: then run on with the defaults
   // Everything after a bare "--" belongs to PETSc/SUNDIALS, untouched.
   std::vector<std::string> args(argv + 1, argv + argc);
   std::vector<std::string> own;

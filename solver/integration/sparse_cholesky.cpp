@@ -9,6 +9,7 @@
 
 #include "integration/petsc_arrays.hpp"
 #include "integration/petsc_session.hpp"
+#include "integration/single_precision_factor.hpp"
 
 namespace needlefem {
 
@@ -52,13 +53,6 @@ class MatrixValues {
   const PetscScalar* values_ = nullptr;
 };
 
-extern "C" {
-void strsv_(const char* uplo, const char* trans, const char* diag, const int* n, const float* a, const int* lda,
-            float* x, const int* incx);
-void sgemv_(const char* trans, const int* m, const int* n, const float* alpha, const float* a, const int* lda,
-            const float* x, const int* incx, const float* beta, float* y, const int* incy);
-}
-
 void cholmod_check(bool ok, const cholmod_common& common, const char* what) {
   if (!ok || common.status < CHOLMOD_OK)
     throw std::runtime_error(fmt::format("CHOLMOD: {} failed (status {})", what, common.status));
@@ -70,8 +64,8 @@ SparseCholesky::SparseCholesky(std::vector<char> prescribed, Precision precision
     : prescribed_(std::move(prescribed)), precision_(precision), common_(new cholmod_common) {
   cholmod_start(common_);
   common_->print = 0;  // failures are reported through status and last_failure()
-  // Small or sparse factors would otherwise be simplicial; the single-precision solve walks supernodes.
-  if (precision_ == Precision::single_solves) common_->supernodal = CHOLMOD_SUPERNODAL;
+  // Small or sparse factors would otherwise be simplicial; the single-precision factor is supernodal.
+  if (precision_ == Precision::single_precision) common_->supernodal = CHOLMOD_SUPERNODAL;
 }
 
 SparseCholesky::~SparseCholesky() {
@@ -81,6 +75,7 @@ SparseCholesky::~SparseCholesky() {
 }
 
 void SparseCholesky::release() {
+  single_.reset();
   cholmod_free_factor(&factor_, common_);
   cholmod_free_sparse(&lower_, common_);
   cholmod_free_dense(&rhs_, common_);
@@ -88,6 +83,8 @@ void SparseCholesky::release() {
   cholmod_free_dense(&work_y_, common_);
   cholmod_free_dense(&work_e_, common_);
 }
+
+int SparseCholesky::concurrent_subtrees() const { return single_ ? single_->concurrent_subtrees() : 0; }
 
 double SparseCholesky::factor_entries() const { return factor_ ? common_->lnz : 0.0; }
 
@@ -138,11 +135,11 @@ void SparseCholesky::analyse(Mat A) {
   cholmod_check(factor_ != nullptr, *common_, "analyze");
   rhs_ = cholmod_zeros(free_count, 1, CHOLMOD_REAL, common_);
   cholmod_check(rhs_ != nullptr, *common_, "zeros");
-  if (precision_ == Precision::single_solves) {  // cholmod_solve2 allocates its own at the first solve
+  if (precision_ == Precision::single_precision) {  // cholmod_solve2 allocates its own at the first solve
     solution_ = cholmod_zeros(free_count, 1, CHOLMOD_REAL, common_);
     cholmod_check(solution_ != nullptr, *common_, "zeros");
-    single_work_.resize(free_count);
-    single_gather_.resize(factor_->maxesize);
+    single_ = std::make_unique<SinglePrecisionFactor>();
+    single_->analyse(*factor_, *lower_);
   }
   entries_ = row_start[n];
 }
@@ -163,63 +160,20 @@ bool SparseCholesky::factor(Mat A) {
   }
   matrix_ = A;
   ++factorizations_;
-  const int ok = cholmod_factorize(lower_, factor_, common_);
-  if (common_->status == CHOLMOD_NOT_POSDEF) {
+  long failed_column = -1;
+  if (precision_ == Precision::single_precision) {
+    if (!single_->factor(static_cast<const double*>(lower_->x))) failed_column = single_->failed_column();
+  } else {
+    const int ok = cholmod_factorize(lower_, factor_, common_);
+    if (common_->status == CHOLMOD_NOT_POSDEF) failed_column = static_cast<long>(factor_->minor);
+    else cholmod_check(ok != 0, *common_, "factorize");
+  }
+  if (failed_column >= 0) {
     last_failure_ = fmt::format("the Newton matrix's symmetric part is not positive definite (free column {} of {})",
-                                static_cast<long>(factor_->minor), static_cast<long>(lower_->ncol));
+                                failed_column, static_cast<long>(lower_->ncol));
     return false;
   }
-  cholmod_check(ok != 0, *common_, "factorize");
-  if (precision_ == Precision::single_solves) {
-    if (!factor_->is_super || !factor_->is_ll)
-      throw std::logic_error("sparse Cholesky: single-precision solves need CHOLMOD's supernodal LLᵀ factor");
-    const auto size = static_cast<std::ptrdiff_t>(factor_->xsize);
-    const double* values = static_cast<const double*>(factor_->x);
-    single_factor_.resize(size);
-#pragma omp parallel for schedule(static)
-    for (std::ptrdiff_t k = 0; k < size; ++k) single_factor_[k] = static_cast<float>(values[k]);
-  }
   return true;
-}
-
-void SparseCholesky::solve_single(const double* r, double* x) {
-  const cholmod_factor& L = *factor_;
-  const auto n = static_cast<std::size_t>(L.n);
-  const int* perm = static_cast<const int*>(L.Perm);
-  const int* super = static_cast<const int*>(L.super);
-  const int* row_start = static_cast<const int*>(L.pi);
-  const int* value_start = static_cast<const int*>(L.px);
-  const int* rows = static_cast<const int*>(L.s);
-  const auto supernodes = static_cast<int>(L.nsuper);
-  float* y = single_work_.data();
-  float* gathered = single_gather_.data();
-  for (std::size_t k = 0; k < n; ++k) y[k] = static_cast<float>(r[perm[k]]);  // y = P r
-  const int one = 1;
-  const float plus = 1.0f, minus = -1.0f, zero = 0.0f;
-  // Supernode s: columns super[s]..super[s+1]-1, rows rows[pi[s]..pi[s+1]) (its own columns
-  // first), values column-major with leading dimension = its row count.
-  for (int s = 0; s < supernodes; ++s) {  // L z = y
-    const int first = super[s], columns = super[s + 1] - first;
-    const int height = row_start[s + 1] - row_start[s], below = height - columns;
-    const float* block = single_factor_.data() + value_start[s];
-    strsv_("L", "N", "N", &columns, block, &height, y + first, &one);
-    if (below == 0) continue;
-    sgemv_("N", &below, &columns, &plus, block + columns, &height, y + first, &one, &zero, gathered, &one);
-    const int* below_rows = rows + row_start[s] + columns;
-    for (int i = 0; i < below; ++i) y[below_rows[i]] -= gathered[i];
-  }
-  for (int s = supernodes - 1; s >= 0; --s) {  // Lᵀ w = z
-    const int first = super[s], columns = super[s + 1] - first;
-    const int height = row_start[s + 1] - row_start[s], below = height - columns;
-    const float* block = single_factor_.data() + value_start[s];
-    if (below > 0) {
-      const int* below_rows = rows + row_start[s] + columns;
-      for (int i = 0; i < below; ++i) gathered[i] = y[below_rows[i]];
-      sgemv_("T", &below, &columns, &minus, block + columns, &height, gathered, &one, &plus, y + first, &one);
-    }
-    strsv_("L", "T", "N", &columns, block, &height, y + first, &one);
-  }
-  for (std::size_t k = 0; k < n; ++k) x[perm[k]] = static_cast<double>(y[k]);  // x = Pᵀ w
 }
 
 void SparseCholesky::solve(Vec b, Vec x) {
@@ -233,8 +187,8 @@ void SparseCholesky::solve(Vec b, Vec x) {
       if (!prescribed_[i]) r[free_index_[i]] = in.data()[i];
     for (const Coupling& c : couplings_) r[c.free_row] -= values.data()[c.entry] * in.data()[c.column];
   }
-  if (precision_ == Precision::single_solves) {
-    solve_single(static_cast<const double*>(rhs_->x), static_cast<double*>(solution_->x));
+  if (precision_ == Precision::single_precision) {
+    single_->solve(static_cast<const double*>(rhs_->x), static_cast<double*>(solution_->x));
   } else {
     cholmod_check(
         cholmod_solve2(CHOLMOD_A, factor_, rhs_, nullptr, &solution_, nullptr, &work_y_, &work_e_, common_) != 0,

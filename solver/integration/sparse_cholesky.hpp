@@ -18,14 +18,15 @@
 // The ordering and the symbolic factorisation are computed at the first factor() and reused
 // while the matrix keeps its number of entries (its pattern); a changed pattern starts afresh.
 //
-// Precision::single_solves keeps a single-precision copy of the supernodal factor and solves
-// with it (forward and back substitution supernode by supernode, BLAS strsv/sgemv, as CHOLMOD's
-// own double-precision solve does). For solves that precondition an iteration (IDA's GMRES), not
-// for exact ones: the solution carries a relative error of about κ(S_ff) × 6e-8. Why: a solve
-// reads the whole factor twice and is memory-bound; half the bytes, about half the time (0.4 mm
-// brain-tip factor, 36.8 M entries: see README "Speed").
+// Precision::single_precision factors and solves in single precision on CHOLMOD's symbolic
+// factor (SinglePrecisionFactor, single_precision_factor.hpp). For solves that precondition an
+// iteration (IDA's GMRES), not for exact ones: the solution carries a relative error of about
+// κ(S_ff) × 6e-8. Why: a solve reads the whole factor twice and is memory-bound, so half the
+// bytes take about half the time, and the factorisation's BLAS-3 runs about twice as fast in
+// single precision (0.4 mm brain-tip factor, 36.8 M entries: see README "Speed").
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -38,11 +39,13 @@ struct cholmod_dense_struct;
 
 namespace needlefem {
 
+class SinglePrecisionFactor;
+
 class SparseCholesky {
  public:
-  enum class Precision { double_solves, single_solves };
+  enum class Precision { double_precision, single_precision };
   // prescribed[i] != 0 marks unknown i as given (its row is not factored).
-  explicit SparseCholesky(std::vector<char> prescribed, Precision precision = Precision::double_solves);
+  explicit SparseCholesky(std::vector<char> prescribed, Precision precision = Precision::double_precision);
   ~SparseCholesky();
   SparseCholesky(const SparseCholesky&) = delete;
   SparseCholesky& operator=(const SparseCholesky&) = delete;
@@ -55,6 +58,9 @@ class SparseCholesky {
   void solve(Vec b, Vec x);
 
   long factorizations() const { return factorizations_; }
+  // Precision::single_precision: subtrees of the elimination tree factored concurrently by
+  // the OpenMP threads (0 on one thread).
+  int concurrent_subtrees() const;
   // Entries of the last factor L (lower triangle with diagonal).
   double factor_entries() const;
   const std::string& last_failure() const { return last_failure_; }
@@ -62,8 +68,6 @@ class SparseCholesky {
  private:
   void analyse(Mat A);  // ordering, symbolic factorisation and the index maps of A's pattern
   void release();
-  // Precision::single_solves: x = S_ff⁻¹ r on the free unknowns with single_factor_.
-  void solve_single(const double* r, double* x);
 
   std::vector<char> prescribed_;
   std::vector<PetscInt> free_index_;  // per unknown: its index among the free ones, or -1
@@ -77,8 +81,7 @@ class SparseCholesky {
   std::vector<Coupling> couplings_;
   Mat matrix_ = nullptr;  // the A of the last factor()
   Precision precision_;
-  std::vector<float> single_factor_;      // the supernodal factor's values, single precision
-  std::vector<float> single_work_, single_gather_;
+  std::unique_ptr<SinglePrecisionFactor> single_;  // Precision::single_precision's factor
 
   cholmod_common_struct* common_ = nullptr;
   cholmod_sparse_struct* lower_ = nullptr;

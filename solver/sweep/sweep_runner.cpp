@@ -48,25 +48,23 @@ LauncherRank launcher_rank() {
 
 // The environment for children: under a launcher, without its variables (they would make the
 // child's MPI_Init join the launcher's job instead of starting a singleton). Unless the user set
-// them, OPENBLAS_NUM_THREADS and OMP_NUM_THREADS give each child the cores divided by the runs at
-// a time: the threaded OpenBLAS and the element loops use every core by default, and `jobs` runs
-// doing so at once would oversubscribe the machine (their threads spin while they wait).
+// it, OMP_NUM_THREADS gives each child the cores divided by the runs at a time: the element loops
+// and the Cholesky factor use every core by default, and `jobs` runs doing so at once would
+// oversubscribe the machine. (BLAS runs on one thread in every needlefem process: main.cpp.)
 std::vector<std::string> child_environment(bool launched, int jobs) {
   std::vector<std::string> out;
-  bool blas_threads_set = false, omp_threads_set = false;
+  bool omp_threads_set = false;
   for (char** entry = environ; *entry; ++entry) {
     const std::string variable(*entry);
     const bool launcher = variable.starts_with("OMPI_") || variable.starts_with("PMIX_") ||
                           variable.starts_with("PMI_") || variable.starts_with("HYDRA_") ||
                           variable.starts_with("MPI_LOCAL");
     const bool keep = variable.starts_with("OMPI_ALLOW_RUN_AS_ROOT");  // the singleton needs it as root
-    blas_threads_set = blas_threads_set || variable.starts_with("OPENBLAS_NUM_THREADS=");
     omp_threads_set = omp_threads_set || variable.starts_with("OMP_NUM_THREADS=");
     if (!launched || !launcher || keep) out.push_back(variable);
   }
   const long cores = std::max(1L, ::sysconf(_SC_NPROCESSORS_ONLN));
   const long threads = std::max(1L, cores / std::max(1, jobs));
-  if (!blas_threads_set) out.push_back(fmt::format("OPENBLAS_NUM_THREADS={}", threads));
   if (!omp_threads_set) out.push_back(fmt::format("OMP_NUM_THREADS={}", threads));
   return out;
 }

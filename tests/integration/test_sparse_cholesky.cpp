@@ -1,12 +1,15 @@
 // SparseCholesky against independent MUMPS LU solves: on a symmetric matrix with prescribed
 // (identity) rows it must equal J⁻¹ b; on an unsymmetric one it must equal the solve with the
 // explicitly symmetrised free block and the prescribed columns moved to the right-hand side;
-// an indefinite matrix is a failed factorisation; refactoring with new values stays exact.
+// an indefinite matrix is a failed factorisation; refactoring with new values stays exact. The
+// single-precision factorisation agrees with CHOLMOD's double one to single precision, on one
+// thread and with subtrees factored on two.
 #include <cmath>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <omp.h>
 #include <petscksp.h>
 
 #include "integration/ksp_solver.hpp"
@@ -46,11 +49,38 @@ Mat grid_matrix(double diagonal, double skew) {
   return A;
 }
 
+// 27-point stencil on a side^3 grid: 27 on the diagonal, -1 to each neighbour (SPD).
+Mat cube_matrix(PetscInt side) {
+  Mat A = nullptr;
+  const PetscInt size = side * side * side;
+  petsc_check(MatCreateSeqAIJ(PETSC_COMM_SELF, size, size, 27, nullptr, &A), "MatCreateSeqAIJ");
+  for (PetscInt i = 0; i < side; ++i)
+    for (PetscInt j = 0; j < side; ++j)
+      for (PetscInt k = 0; k < side; ++k)
+        for (PetscInt di = -1; di <= 1; ++di)
+          for (PetscInt dj = -1; dj <= 1; ++dj)
+            for (PetscInt dk = -1; dk <= 1; ++dk) {
+              const PetscInt ni = i + di, nj = j + dj, nk = k + dk;
+              if (ni < 0 || ni >= side || nj < 0 || nj >= side || nk < 0 || nk >= side) continue;
+              const PetscInt row = (i * side + j) * side + k, column = (ni * side + nj) * side + nk;
+              petsc_check(MatSetValue(A, row, column, row == column ? 27.0 : -1.0, INSERT_VALUES), "MatSetValue");
+            }
+  assemble(A);
+  return A;
+}
+
+PetscInt rows_of(Mat A) {
+  PetscInt rows = 0, columns = 0;
+  petsc_check(MatGetSize(A, &rows, &columns), "MatGetSize");
+  return rows;
+}
+
 // Every 7th unknown prescribed, its row replaced by an identity row (as the mechanics does).
 std::vector<char> prescribe_rows(Mat A) {
-  std::vector<char> prescribed(kSize, 0);
+  const PetscInt size = rows_of(A);
+  std::vector<char> prescribed(size, 0);
   std::vector<PetscInt> rows;
-  for (PetscInt k = 0; k < kSize; k += 7) {
+  for (PetscInt k = 0; k < size; k += 7) {
     prescribed[k] = 1;
     rows.push_back(k);
   }
@@ -59,11 +89,11 @@ std::vector<char> prescribe_rows(Mat A) {
   return prescribed;
 }
 
-Vec right_hand_side() {
+Vec right_hand_side(PetscInt size = kSize) {
   Vec b = nullptr;
-  petsc_check(VecCreateSeq(PETSC_COMM_SELF, kSize, &b), "VecCreateSeq");
+  petsc_check(VecCreateSeq(PETSC_COMM_SELF, size, &b), "VecCreateSeq");
   WriteArray values(b);
-  for (PetscInt k = 0; k < kSize; ++k) values.data()[k] = std::sin(0.37 * k) + 0.5;
+  for (PetscInt k = 0; k < size; ++k) values.data()[k] = std::sin(0.37 * k) + 0.5;
   return b;
 }
 
@@ -120,7 +150,7 @@ TEST(SparseCholesky, SymmetricMatrixWithPrescribedRowsSolvesExactly) {
 // really is the float copy that solves).
 TEST(SparseCholesky, SinglePrecisionSolveAgreesToSinglePrecision) {
   Mat A = grid_matrix(9.0, 0.0);
-  SparseCholesky cholesky(prescribe_rows(A), SparseCholesky::Precision::single_solves);
+  SparseCholesky cholesky(prescribe_rows(A), SparseCholesky::Precision::single_precision);
   ASSERT_TRUE(cholesky.factor(A)) << cholesky.last_failure();
   Vec b = right_hand_side(), reference = lu_solve(A, b), x = cholesky_solve(cholesky, b);
   const double error = relative_difference(x, reference);
@@ -128,6 +158,37 @@ TEST(SparseCholesky, SinglePrecisionSolveAgreesToSinglePrecision) {
   EXPECT_LT(error, 1e-5);
   EXPECT_GT(error, 1e-10);
   for (Vec v : {b, reference, x}) VecDestroy(&v);
+  MatDestroy(&A);
+}
+
+// A 3-D matrix large enough for many supernodes: the single-precision factor (one thread, then
+// two threads with concurrent subtrees) against CHOLMOD's double-precision one.
+TEST(SparseCholesky, SinglePrecisionFactorOnOneAndTwoThreadsAgreesWithDouble) {
+  constexpr PetscInt kCubeSide = 16;
+  Mat A = cube_matrix(kCubeSide);
+  const std::vector<char> prescribed = prescribe_rows(A);
+  Vec b = right_hand_side(rows_of(A));
+  SparseCholesky exact(prescribed);
+  ASSERT_TRUE(exact.factor(A)) << exact.last_failure();
+  Vec reference = cholesky_solve(exact, b);
+  const int threads_before = omp_get_max_threads();
+  std::vector<Vec> solutions;
+  for (int threads : {1, 2}) {
+    omp_set_num_threads(threads);  // the subtrees are planned at the first factor()
+    SparseCholesky single(prescribed, SparseCholesky::Precision::single_precision);
+    ASSERT_TRUE(single.factor(A)) << single.last_failure();
+    ASSERT_TRUE(single.factor(A)) << single.last_failure();  // refactoring starts from zero again
+    solutions.push_back(cholesky_solve(single, b));
+    const double error = relative_difference(solutions.back(), reference);
+    std::printf("single-precision factor, %d thread(s), %d concurrent subtrees: |x - x_double| / |x_double| = %.2e\n",
+                threads, single.concurrent_subtrees(), error);
+    EXPECT_LT(error, 1e-5);
+    EXPECT_GT(error, 1e-10);  // it really is single precision
+    EXPECT_EQ(single.concurrent_subtrees() > 1, threads > 1);
+  }
+  omp_set_num_threads(threads_before);
+  EXPECT_LT(relative_difference(solutions[1], solutions[0]), 1e-5);
+  for (Vec v : {b, reference, solutions[0], solutions[1]}) VecDestroy(&v);
   MatDestroy(&A);
 }
 
@@ -180,12 +241,14 @@ TEST(SparseCholesky, UnsymmetricMatrixSolvesWithItsSymmetricFreeBlock) {
 }
 
 TEST(SparseCholesky, IndefiniteMatrixIsAFailedFactorisation) {
-  Mat A = grid_matrix(1.0, 0.0);  // diagonal 1 against eight -1 neighbours: indefinite
-  SparseCholesky cholesky(prescribe_rows(A));
-  EXPECT_FALSE(cholesky.factor(A));
-  EXPECT_NE(cholesky.last_failure().find("not positive definite"), std::string::npos) << cholesky.last_failure();
-  std::printf("indefinite: %s\n", cholesky.last_failure().c_str());
-  MatDestroy(&A);
+  for (const auto precision : {SparseCholesky::Precision::double_precision, SparseCholesky::Precision::single_precision}) {
+    Mat A = grid_matrix(1.0, 0.0);  // diagonal 1 against eight -1 neighbours: indefinite
+    SparseCholesky cholesky(prescribe_rows(A), precision);
+    EXPECT_FALSE(cholesky.factor(A));
+    EXPECT_NE(cholesky.last_failure().find("not positive definite"), std::string::npos) << cholesky.last_failure();
+    std::printf("indefinite: %s\n", cholesky.last_failure().c_str());
+    MatDestroy(&A);
+  }
 }
 
 TEST(SparseCholesky, UnsymmetricPatternIsRejected) {

@@ -151,8 +151,8 @@ MechanicsSystem::MechanicsSystem(const TetMesh& mesh, const material::Material& 
   KspOptions ksp_options = solver_options;
   if (solver_options.method == "cholmod") {
     cholesky_ = std::make_unique<SparseCholesky>(prescribed_, solver_options.preconditioner_only
-                                                                  ? SparseCholesky::Precision::single_solves
-                                                                  : SparseCholesky::Precision::double_solves);
+                                                                  ? SparseCholesky::Precision::single_precision
+                                                                  : SparseCholesky::Precision::double_precision);
     ksp_options.method = "mumps";
   }
   solver_ = std::make_unique<KspSolver>(PETSC_COMM_SELF, ksp_options);

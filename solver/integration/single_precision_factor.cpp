@@ -1,0 +1,410 @@
+// Algorithm and the reasons for it: single_precision_factor.hpp.
+#include "integration/single_precision_factor.hpp"
+
+#include <dlfcn.h>
+#include <omp.h>
+
+#include <algorithm>
+#include <numeric>
+#include <stdexcept>
+
+#include <cholmod.h>
+
+namespace needlefem {
+
+namespace {
+
+extern "C" {
+void spotrf_(const char* uplo, const int* n, float* a, const int* lda, int* info);
+void strsm_(const char* side, const char* uplo, const char* transa, const char* diag, const int* m, const int* n,
+            const float* alpha, const float* a, const int* lda, float* b, const int* ldb);
+void ssyrk_(const char* uplo, const char* trans, const int* n, const int* k, const float* alpha, const float* a,
+            const int* lda, const float* beta, float* c, const int* ldc);
+void sgemm_(const char* transa, const char* transb, const int* m, const int* n, const int* k, const float* alpha,
+            const float* a, const int* lda, const float* b, const int* ldb, const float* beta, float* c,
+            const int* ldc);
+void strsv_(const char* uplo, const char* trans, const char* diag, const int* n, const float* a, const int* lda,
+            float* x, const int* incx);
+void sgemv_(const char* trans, const int* m, const int* n, const float* alpha, const float* a, const int* lda,
+            const float* x, const int* incx, const float* beta, float* y, const int* incy);
+}
+
+// OpenBLAS's thread count for the calls of this process, set for a scope where the caller's
+// own threads each call BLAS. Other BLAS libraries have no such call; the scope then does nothing.
+class BlasThreads {
+ public:
+  explicit BlasThreads(int threads) {
+    set_ = reinterpret_cast<void (*)(int)>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
+    auto get = reinterpret_cast<int (*)()>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
+    if (!set_ || !get) return;
+    previous_ = get();
+    set_(threads);
+  }
+  ~BlasThreads() {
+    if (set_) set_(previous_);
+  }
+  BlasThreads(const BlasThreads&) = delete;
+  BlasThreads& operator=(const BlasThreads&) = delete;
+
+ private:
+  void (*set_)(int) = nullptr;
+  int previous_ = 1;
+};
+
+}  // namespace
+
+void SinglePrecisionFactor::analyse(const cholmod_factor& symbolic, const cholmod_sparse& lower) {
+  if (!symbolic.is_super) throw std::logic_error("single-precision factor: CHOLMOD's symbolic factor is not supernodal");
+  super_ = static_cast<const int*>(symbolic.super);
+  row_start_ = static_cast<const int*>(symbolic.pi);
+  value_start_ = static_cast<const int*>(symbolic.px);
+  rows_ = static_cast<const int*>(symbolic.s);
+  perm_ = static_cast<const int*>(symbolic.Perm);
+  supernodes_ = static_cast<int>(symbolic.nsuper);
+  n_ = static_cast<int>(symbolic.n);
+  max_update_ = symbolic.maxcsize;
+  values_.assign(symbolic.xsize, 0.0f);
+  work_.assign(n_, 0.0f);
+  supernode_of_column_.resize(n_);
+  for (int s = 0; s < supernodes_; ++s)
+    std::fill(supernode_of_column_.begin() + super_[s], supernode_of_column_.begin() + super_[s + 1], s);
+
+  std::vector<int> inverse(n_);
+  for (int k = 0; k < n_; ++k) inverse[perm_[k]] = k;
+  const int* column_start = static_cast<const int*>(lower.p);
+  const int* row_index = static_cast<const int*>(lower.i);
+  target_.resize(column_start[lower.ncol]);
+  for (int j = 0; j < static_cast<int>(lower.ncol); ++j)
+    for (int p = column_start[j]; p < column_start[j + 1]; ++p) {
+      const int a = inverse[row_index[p]], b = inverse[j];
+      const int column = std::min(a, b), row = std::max(a, b), s = supernode_of_column_[column];
+      const int* first = rows_ + row_start_[s];
+      const int* last = rows_ + row_start_[s + 1];
+      const int* found = std::lower_bound(first, last, row);
+      if (found == last || *found != row) throw std::logic_error("single-precision factor: entry outside the factor");
+      const auto height = static_cast<std::size_t>(last - first);
+      target_[p] = value_start_[s] + static_cast<std::size_t>(column - super_[s]) * height + (found - first);
+    }
+  next_row_.assign(supernodes_, 0);
+  next_in_list_.assign(supernodes_, -1);
+  plan_subtrees(omp_get_max_threads());
+  const std::size_t threads = thread_ranges_.size();
+  gathered_.assign(threads, std::vector<float>(symbolic.maxesize));
+  above_.assign(threads > 1 ? threads : 0, std::vector<float>(n_, 0.0f));
+  above_row_.assign(n_, 0);
+  if (threads > 1)
+    for (int j : top_) std::fill(above_row_.begin() + super_[j], above_row_.begin() + super_[j + 1], 1);
+}
+
+// Splits the supernodal elimination tree into subtrees for the threads: starting from its roots,
+// the heaviest subtree is split (its root moved to the top part, its children becoming subtrees)
+// until a largest-first assignment of the subtrees to the threads is within 5 % of even.
+void SinglePrecisionFactor::plan_subtrees(int threads) {
+  thread_ranges_.assign(std::max(threads, 1), {});
+  top_.clear();
+  if (threads < 2) {
+    top_.resize(supernodes_);
+    std::iota(top_.begin(), top_.end(), 0);
+    return;
+  }
+  std::vector<int> parent(supernodes_, -1), size(supernodes_, 1);
+  std::vector<double> work(supernodes_, 0.0);
+  std::vector<std::vector<int>> children(supernodes_);
+  std::vector<int> roots;
+  for (int s = 0; s < supernodes_; ++s) {  // postordered: children before parents
+    const double columns = super_[s + 1] - super_[s], height = row_start_[s + 1] - row_start_[s];
+    work[s] += columns * height * height;
+    if (height > columns) {
+      parent[s] = supernode_of_column_[rows_[row_start_[s] + static_cast<int>(columns)]];
+      work[parent[s]] += work[s];
+      size[parent[s]] += size[s];
+      children[parent[s]].push_back(s);
+    } else {
+      roots.push_back(s);
+    }
+  }
+  std::vector<int> subtrees = roots;
+  const auto heavier = [&](int a, int b) { return work[a] > work[b]; };
+  std::vector<double> load(threads);
+  std::vector<std::vector<int>> assigned(threads);
+  for (int split = 0; split < 4 * supernodes_; ++split) {
+    std::sort(subtrees.begin(), subtrees.end(), heavier);
+    std::fill(load.begin(), load.end(), 0.0);
+    for (auto& a : assigned) a.clear();
+    for (int s : subtrees) {
+      const auto lightest = std::min_element(load.begin(), load.end()) - load.begin();
+      load[lightest] += work[s];
+      assigned[lightest].push_back(s);
+    }
+    const double total = std::accumulate(load.begin(), load.end(), 0.0);
+    if (*std::max_element(load.begin(), load.end()) <= 1.05 * total / threads || children[subtrees.front()].empty())
+      break;
+    const int heaviest = subtrees.front();
+    subtrees.erase(subtrees.begin());
+    subtrees.insert(subtrees.end(), children[heaviest].begin(), children[heaviest].end());
+    top_.push_back(heaviest);
+  }
+  for (int t = 0; t < threads; ++t) {
+    for (int s : assigned[t]) thread_ranges_[t].emplace_back(s - size[s] + 1, s + 1);
+    std::sort(thread_ranges_[t].begin(), thread_ranges_[t].end());
+  }
+  std::sort(top_.begin(), top_.end());
+}
+
+int SinglePrecisionFactor::concurrent_subtrees() const {
+  if (thread_ranges_.size() < 2) return 0;
+  std::size_t count = 0;
+  for (const auto& ranges : thread_ranges_) count += ranges.size();
+  return static_cast<int>(count);
+}
+
+void SinglePrecisionFactor::link(int d, std::vector<int>& head) {
+  const int owner = supernode_of_column_[rows_[row_start_[d] + next_row_[d]]];
+  next_in_list_[d] = head[owner];
+  head[owner] = d;
+}
+
+// Takes the list of supernodes d that update j, with the rows of each in j's columns, and links
+// each d to the supernode its next rows update.
+void SinglePrecisionFactor::take_updates(int j, std::vector<int>& head, std::vector<Update>& updates) {
+  const int k2 = super_[j + 1];
+  updates.clear();
+  for (int d = head[j], following = -1; d != -1; d = following) {
+    following = next_in_list_[d];
+    const int d_first_row = row_start_[d], d_height = row_start_[d + 1] - d_first_row;
+    Update u{d, next_row_[d], next_row_[d]};
+    while (u.p2 < d_height && rows_[d_first_row + u.p2] < k2) ++u.p2;
+    updates.push_back(u);
+    next_row_[d] = u.p2;
+    if (u.p2 < d_height) link(d, head);
+  }
+}
+
+// Columns [c0, c1) of d's update of j: C = L_d(p1+c0:end, :) L_d(p1+c0:p1+c1, :)ᵀ (its lower
+// part), subtracted from j's block at the rows `map` gives.
+void SinglePrecisionFactor::apply_update(int j, const Update& u, int c0, int c1, const std::vector<int>& map,
+                                         std::vector<float>& update) {
+  const int k1 = super_[j], height = row_start_[j + 1] - row_start_[j];
+  float* block = values_.data() + value_start_[j];
+  const int d = u.d, d_columns = super_[d + 1] - super_[d];
+  const int d_first_row = row_start_[d], d_height = row_start_[d + 1] - d_first_row;
+  const int width = c1 - c0, below = d_height - u.p1 - c0, further = below - width;
+  if (width <= 0) return;
+  const float one = 1.0f, zero = 0.0f;
+  const float* source = values_.data() + value_start_[d] + u.p1 + c0;
+  float* c = update.data();
+  ssyrk_("L", "N", &width, &d_columns, &one, source, &d_height, &zero, c, &below);
+  if (further > 0)
+    sgemm_("N", "T", &further, &width, &d_columns, &one, source + width, &d_height, source, &d_height, &zero,
+           c + width, &below);
+  const int* d_rows = rows_ + d_first_row + u.p1 + c0;
+  for (int jj = 0; jj < width; ++jj) {
+    float* target = block + static_cast<std::size_t>(d_rows[jj] - k1) * height;
+    const float* from = c + static_cast<std::size_t>(jj) * below;
+    for (int ii = jj; ii < below; ++ii) target[map[d_rows[ii]]] -= from[ii];
+  }
+}
+
+bool SinglePrecisionFactor::factor_diagonal(int j) {
+  const int columns = super_[j + 1] - super_[j], height = row_start_[j + 1] - row_start_[j];
+  int info = 0;
+  spotrf_("L", &columns, values_.data() + value_start_[j], &height, &info);
+  if (info != 0) failed_column_ = super_[j] + info - 1;
+  return info == 0;
+}
+
+// Rows [r0, r1) of j's part below its diagonal block: L_21 = A_21 L_11⁻ᵀ.
+void SinglePrecisionFactor::solve_below(int j, int r0, int r1) {
+  const int columns = super_[j + 1] - super_[j], height = row_start_[j + 1] - row_start_[j], rows = r1 - r0;
+  if (rows <= 0) return;
+  const float one = 1.0f;
+  float* block = values_.data() + value_start_[j];
+  strsm_("R", "L", "T", "N", &rows, &columns, &one, block, &height, block + columns + r0, &height);
+}
+
+void SinglePrecisionFactor::map_rows(int j, std::vector<int>& map) const {
+  for (int k = row_start_[j]; k < row_start_[j + 1]; ++k) map[rows_[k]] = k - row_start_[j];
+}
+
+void SinglePrecisionFactor::finish(int j, std::vector<int>& head) {
+  const int columns = super_[j + 1] - super_[j], height = row_start_[j + 1] - row_start_[j];
+  if (height == columns) return;
+  next_row_[j] = columns;
+  link(j, head);
+}
+
+bool SinglePrecisionFactor::factor_range(int first, int last, std::vector<int>& head, Workspace& work) {
+  for (int j = first; j < last; ++j) {
+    map_rows(j, work.map);
+    take_updates(j, head, work.updates);
+    for (const Update& u : work.updates) apply_update(j, u, 0, u.p2 - u.p1, work.map, work.update);
+    const int columns = super_[j + 1] - super_[j], height = row_start_[j + 1] - row_start_[j];
+    if (!factor_diagonal(j)) return false;
+    solve_below(j, 0, height - columns);
+    finish(j, head);
+  }
+  return true;
+}
+
+// The top part, supernode after supernode, each shared by the threads: its columns for the
+// updates, the rows below its diagonal block for the triangular solve. Small supernodes go to
+// one thread: a barrier costs more than they do.
+bool SinglePrecisionFactor::factor_top(std::vector<int>& head, std::vector<Workspace>& work) {
+  const int threads = static_cast<int>(work.size());
+  // Whether supernode i of the top part factored, by the parity of i: a thread reads entry i % 2
+  // after the barrier that ends its single writer; the next writer of that entry, i + 2's, comes
+  // after i + 1's barrier, which no thread passes before all have read.
+  bool factored[2] = {true, true};
+  std::vector<Update>& updates = work.front().updates;
+  std::vector<int>& map = work.front().map;
+#pragma omp parallel num_threads(threads)
+  {
+    const int t = omp_get_thread_num();
+    for (std::size_t i = 0; i < top_.size(); ++i) {
+      const int j = top_[i];
+      bool& done = factored[i % 2];
+      const int columns = super_[j + 1] - super_[j], height = row_start_[j + 1] - row_start_[j];
+      const bool shared = threads > 1 && static_cast<double>(columns) * height * height > kSharedSupernodeWork;
+      if (!shared) {
+#pragma omp single
+        done = factor_range(j, j + 1, head, work.front());
+        if (!done) break;
+        continue;
+      }
+#pragma omp single
+      {
+        map_rows(j, map);
+        take_updates(j, head, updates);
+      }
+      // The thread's share: j's columns k1+c_begin..k1+c_end-1, where column c costs height - c (the
+      // entries of j's block it updates), so that each share costs about the same.
+      const auto boundary = [&](int part) {
+        const double target = (static_cast<double>(columns) * height - 0.5 * columns * columns) * part / threads;
+        double cost = 0.0;
+        int c = 0;
+        while (c < columns && cost + (height - c) <= target) cost += height - c++;
+        return part == threads ? columns : c;
+      };
+      const int k1 = super_[j], c_begin = boundary(t), c_end = boundary(t + 1);
+      for (const Update& u : updates) {  // d's rows p1..p2-1 are j's columns, ascending
+        const int* inside = rows_ + row_start_[u.d] + u.p1;
+        const int count = u.p2 - u.p1;
+        const int c0 = static_cast<int>(std::lower_bound(inside, inside + count, k1 + c_begin) - inside);
+        const int c1 = static_cast<int>(std::lower_bound(inside, inside + count, k1 + c_end) - inside);
+        apply_update(j, u, c0, c1, map, work[t].update);
+      }
+#pragma omp barrier
+#pragma omp single
+      done = factor_diagonal(j);
+      if (!done) break;
+      const int below = height - columns;
+      solve_below(j, below * t / threads, below * (t + 1) / threads);
+#pragma omp barrier
+#pragma omp single
+      finish(j, head);
+    }
+  }
+  return factored[0] && factored[1];
+}
+
+bool SinglePrecisionFactor::factor(const double* lower_values) {
+  failed_column_ = -1;
+  const auto size = static_cast<std::ptrdiff_t>(values_.size());
+  const auto entries = static_cast<std::ptrdiff_t>(target_.size());
+#pragma omp parallel
+  {
+#pragma omp for schedule(static)
+    for (std::ptrdiff_t k = 0; k < size; ++k) values_[k] = 0.0f;
+#pragma omp for schedule(static)
+    for (std::ptrdiff_t p = 0; p < entries; ++p) values_[target_[p]] = static_cast<float>(lower_values[p]);
+  }
+  const int threads = static_cast<int>(thread_ranges_.size());
+  const BlasThreads one_each(1);
+  std::vector<std::vector<int>> heads(threads, std::vector<int>(supernodes_, -1));
+  std::vector<Workspace> work(threads, Workspace{std::vector<int>(n_), std::vector<float>(max_update_), {}});
+  bool ok = true;
+  if (threads > 1) {
+#pragma omp parallel num_threads(threads) reduction(&& : ok)
+    {
+      const int t = omp_get_thread_num();
+      for (const auto& [first, last] : thread_ranges_[t])
+        if (ok) ok = factor_range(first, last, heads[t], work[t]);
+    }
+  }
+  if (!ok) return false;
+  // The lists of each thread joined into the first's.
+  std::vector<int>& head = heads.front();
+  for (int j : top_)
+    for (int t = 1; t < threads; ++t) {
+      if (heads[t][j] == -1) continue;
+      int last = heads[t][j];
+      while (next_in_list_[last] != -1) last = next_in_list_[last];
+      next_in_list_[last] = head[j];
+      head[j] = heads[t][j];
+    }
+  return factor_top(head, work);
+}
+
+void SinglePrecisionFactor::forward(int s, float* y, float* above, float* gathered) const {
+  const int first = super_[s], columns = super_[s + 1] - first;
+  const int height = row_start_[s + 1] - row_start_[s], below = height - columns;
+  const float* block = values_.data() + value_start_[s];
+  const int one = 1;
+  const float plus = 1.0f, zero = 0.0f;
+  strsv_("L", "N", "N", &columns, block, &height, y + first, &one);
+  if (below == 0) return;
+  sgemv_("N", &below, &columns, &plus, block + columns, &height, y + first, &one, &zero, gathered, &one);
+  const int* below_rows = rows_ + row_start_[s] + columns;
+  for (int i = 0; i < below; ++i) {
+    const int row = below_rows[i];
+    (above && above_row_[row] ? above : y)[row] -= gathered[i];
+  }
+}
+
+void SinglePrecisionFactor::backward(int s, float* y, float* gathered) const {
+  const int first = super_[s], columns = super_[s + 1] - first;
+  const int height = row_start_[s + 1] - row_start_[s], below = height - columns;
+  const float* block = values_.data() + value_start_[s];
+  const int one = 1;
+  const float plus = 1.0f, minus = -1.0f;
+  if (below > 0) {
+    const int* below_rows = rows_ + row_start_[s] + columns;
+    for (int i = 0; i < below; ++i) gathered[i] = y[below_rows[i]];
+    sgemv_("T", &below, &columns, &minus, block + columns, &height, gathered, &one, &plus, y + first, &one);
+  }
+  strsv_("L", "T", "N", &columns, block, &height, y + first, &one);
+}
+
+void SinglePrecisionFactor::solve(const double* r, double* x) {
+  const auto n = static_cast<std::size_t>(n_);
+  const int threads = static_cast<int>(thread_ranges_.size());
+  float* y = work_.data();
+  const BlasThreads one_each(1);
+  for (std::size_t k = 0; k < n; ++k) y[k] = static_cast<float>(r[perm_[k]]);  // y = P r
+  if (threads > 1) {  // L z = y on the subtrees
+#pragma omp parallel num_threads(threads)
+    {
+      const int t = omp_get_thread_num();
+      float* above = above_[t].data();
+      for (int j : top_) std::fill(above + super_[j], above + super_[j + 1], 0.0f);
+      for (const auto& [first, last] : thread_ranges_[t])
+        for (int s = first; s < last; ++s) forward(s, y, above, gathered_[t].data());
+    }
+    for (int j : top_)
+      for (int k = super_[j]; k < super_[j + 1]; ++k)
+        for (const auto& above : above_) y[k] += above[k];
+  }
+  for (int s : top_) forward(s, y, nullptr, gathered_.front().data());  // L z = y on the top part
+  for (auto s = top_.rbegin(); s != top_.rend(); ++s) backward(*s, y, gathered_.front().data());  // Lᵀ w = z
+  if (threads > 1) {
+#pragma omp parallel num_threads(threads)
+    {
+      const int t = omp_get_thread_num();
+      for (auto range = thread_ranges_[t].rbegin(); range != thread_ranges_[t].rend(); ++range)
+        for (int s = range->second - 1; s >= range->first; --s) backward(s, y, gathered_[t].data());
+    }
+  }
+  for (std::size_t k = 0; k < n; ++k) x[perm_[k]] = static_cast<double>(y[k]);  // x = Pᵀ w
+}
+
+}  // namespace needlefem
