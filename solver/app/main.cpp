@@ -47,7 +47,8 @@ int main(int argc, char** argv) {
   // libgomp reads OMP_WAIT_POLICY, and OpenBLAS OPENBLAS_NUM_THREADS, once, when they load. Idle
   // threads of both spin by default and take the cores from the threads with work: OpenBLAS's
   // after every call, even a vector operation of PETSc's. The element loops and the Cholesky
-  // factor thread with OpenMP themselves, so BLAS runs on one thread. Measured on 2 cores: tied
+  // factor thread with OpenMP themselves, so BLAS runs on one thread (where a double-precision
+  // factorisation's BLAS-3 calls are the work, it asks for more: blas_threads.hpp). Measured on 2 cores: tied
   // brain-tip benchmark 42.7 s with spinning OpenMP threads against 35.9 s passive (before the
   // single-precision factor), then 22.1 s with two OpenBLAS threads against 20.5 s with one; the
   // default frictional case, whose MUMPS LU factorisations lose BLAS's threads, 60.3 against

@@ -1,7 +1,6 @@
 // Algorithm and the reasons for it: single_precision_factor.hpp.
 #include "integration/single_precision_factor.hpp"
 
-#include <dlfcn.h>
 #include <omp.h>
 
 #include <algorithm>
@@ -9,6 +8,8 @@
 #include <stdexcept>
 
 #include <cholmod.h>
+
+#include "integration/blas_threads.hpp"
 
 namespace needlefem {
 
@@ -28,28 +29,6 @@ void strsv_(const char* uplo, const char* trans, const char* diag, const int* n,
 void sgemv_(const char* trans, const int* m, const int* n, const float* alpha, const float* a, const int* lda,
             const float* x, const int* incx, const float* beta, float* y, const int* incy);
 }
-
-// OpenBLAS's thread count for the calls of this process, set for a scope where the caller's
-// own threads each call BLAS. Other BLAS libraries have no such call; the scope then does nothing.
-class BlasThreads {
- public:
-  explicit BlasThreads(int threads) {
-    set_ = reinterpret_cast<void (*)(int)>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
-    auto get = reinterpret_cast<int (*)()>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
-    if (!set_ || !get) return;
-    previous_ = get();
-    set_(threads);
-  }
-  ~BlasThreads() {
-    if (set_) set_(previous_);
-  }
-  BlasThreads(const BlasThreads&) = delete;
-  BlasThreads& operator=(const BlasThreads&) = delete;
-
- private:
-  void (*set_)(int) = nullptr;
-  int previous_ = 1;
-};
 
 }  // namespace
 

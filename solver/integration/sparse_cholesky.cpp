@@ -5,8 +5,10 @@
 #include <stdexcept>
 
 #include <cholmod.h>
+#include <omp.h>
 #include <fmt/core.h>
 
+#include "integration/blas_threads.hpp"
 #include "integration/petsc_arrays.hpp"
 #include "integration/petsc_session.hpp"
 #include "integration/single_precision_factor.hpp"
@@ -164,6 +166,8 @@ bool SparseCholesky::factor(Mat A) {
   if (precision_ == Precision::single_precision) {
     if (!single_->factor(static_cast<const double*>(lower_->x))) failed_column = single_->failed_column();
   } else {
+    // Its large BLAS-3 calls are the work; BLAS is on one thread otherwise (blas_threads.hpp).
+    const BlasThreads cores(omp_get_max_threads());
     const int ok = cholmod_factorize(lower_, factor_, common_);
     if (common_->status == CHOLMOD_NOT_POSDEF) failed_column = static_cast<long>(factor_->minor);
     else cholmod_check(ok != 0, *common_, "factorize");

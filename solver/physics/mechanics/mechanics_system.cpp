@@ -36,24 +36,27 @@ DaeStatus guarded(Body&& body) noexcept {
 
 // Runs body(k, out) for every element k = 0..elements-1 on the OpenMP threads, each thread adding
 // into its own zeroed copy of `out` (size values) except the first, which adds into `out`; the
-// copies are summed into `out` at the end. Elements sharing a node then never race, without a
-// colouring of the mesh. Static schedule: the same sums for the same thread count.
+// copies are then added to `out` in thread order, the entries shared among the threads. Elements
+// sharing a node never race, without a colouring of the mesh, and with the static schedule every
+// entry is the same sum in the same order for a given thread count.
 template <class Body>
 void for_each_element_summed(std::size_t elements, double* out, std::size_t size, Body&& body) {
+  std::vector<std::vector<double>> copies;  // of threads 1, 2, ...
 #pragma omp parallel
   {
-    std::vector<double> own;
+#pragma omp single
+    copies.resize(static_cast<std::size_t>(omp_get_num_threads()) - 1);  // implicit barrier
+    const auto thread = static_cast<std::size_t>(omp_get_thread_num());
     double* target = out;
-    if (omp_get_thread_num() != 0) {
-      own.assign(size, 0.0);
-      target = own.data();
+    if (thread > 0) {
+      copies[thread - 1].assign(size, 0.0);
+      target = copies[thread - 1].data();
     }
 #pragma omp for schedule(static)
     for (std::size_t k = 0; k < elements; ++k) body(k, target);
-    if (!own.empty()) {
-#pragma omp critical(needlefem_element_sums)
-      for (std::size_t i = 0; i < size; ++i) out[i] += own[i];
-    }
+#pragma omp for schedule(static)
+    for (std::size_t i = 0; i < size; ++i)
+      for (const auto& copy : copies) out[i] += copy[i];
   }
 }
 
