@@ -4,6 +4,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <stdexcept>
 
@@ -17,6 +18,7 @@ namespace {
 
 extern "C" {
 void spotrf_(const char* uplo, const int* n, float* a, const int* lda, int* info);
+void sgetrf_(const int* m, const int* n, float* a, const int* lda, int* ipiv, int* info);
 void strsm_(const char* side, const char* uplo, const char* transa, const char* diag, const int* m, const int* n,
             const float* alpha, const float* a, const int* lda, float* b, const int* ldb);
 void ssyrk_(const char* uplo, const char* trans, const int* n, const int* k, const float* alpha, const float* a,
@@ -42,28 +44,26 @@ void SinglePrecisionFactor::analyse(const cholmod_factor& symbolic, const cholmo
   supernodes_ = static_cast<int>(symbolic.nsuper);
   n_ = static_cast<int>(symbolic.n);
   max_update_ = symbolic.maxcsize;
-  values_.assign(symbolic.xsize, 0.0f);
+  values_.assign(symbolic.xsize, 0.0f);  // L's panels; LU adds Uᵀ's behind them
+  upper_offset_ = symbolic.xsize;
   work_.assign(n_, 0.0f);
   supernode_of_column_.resize(n_);
   for (int s = 0; s < supernodes_; ++s)
     std::fill(supernode_of_column_.begin() + super_[s], supernode_of_column_.begin() + super_[s + 1], s);
 
-  std::vector<int> inverse(n_);
-  for (int k = 0; k < n_; ++k) inverse[perm_[k]] = k;
+  inverse_.resize(n_);
+  for (int k = 0; k < n_; ++k) inverse_[perm_[k]] = k;
+  lower_ = &lower;
   const int* column_start = static_cast<const int*>(lower.p);
   const int* row_index = static_cast<const int*>(lower.i);
   target_.resize(column_start[lower.ncol]);
   for (int j = 0; j < static_cast<int>(lower.ncol); ++j)
     for (int p = column_start[j]; p < column_start[j + 1]; ++p) {
-      const int a = inverse[row_index[p]], b = inverse[j];
-      const int column = std::min(a, b), row = std::max(a, b), s = supernode_of_column_[column];
-      const int* first = rows_ + row_start_[s];
-      const int* last = rows_ + row_start_[s + 1];
-      const int* found = std::lower_bound(first, last, row);
-      if (found == last || *found != row) throw std::logic_error("single-precision factor: entry outside the factor");
-      const auto height = static_cast<std::size_t>(last - first);
-      target_[p] = value_start_[s] + static_cast<std::size_t>(column - super_[s]) * height + (found - first);
+      const int a = inverse_[row_index[p]], b = inverse_[j];
+      target_[p] = lower_position(std::max(a, b), std::min(a, b));
     }
+  lu_target_.clear();
+  lu_target_transposed_.clear();
   next_row_.assign(supernodes_, 0);
   next_in_list_.assign(supernodes_, -1);
   plan_subtrees(omp_get_max_threads());
@@ -73,6 +73,30 @@ void SinglePrecisionFactor::analyse(const cholmod_factor& symbolic, const cholmo
   above_row_.assign(n_, 0);
   if (threads > 1)
     for (int j : top_) std::fill(above_row_.begin() + super_[j], above_row_.begin() + super_[j + 1], 1);
+}
+
+// Position in values_ of entry (row, column) of P A Pᵀ, row >= column: L's panel of the
+// supernode owning the column.
+std::size_t SinglePrecisionFactor::lower_position(int row, int column) const {
+  const int s = supernode_of_column_[column];
+  const int* first = rows_ + row_start_[s];
+  const int* last = rows_ + row_start_[s + 1];
+  const int* found = std::lower_bound(first, last, row);
+  if (found == last || *found != row) throw std::logic_error("single-precision factor: entry outside the factor");
+  return value_start_[s] + static_cast<std::size_t>(column - super_[s]) * (last - first) + (found - first);
+}
+
+// Position in values_ of entry (row, column) of P A Pᵀ for LU: at or below the diagonal, L's
+// panel; above it, in the owning supernode's diagonal block (L's panel holds it whole), else
+// in Uᵀ's panel, laid out like L's from upper_offset_.
+std::size_t SinglePrecisionFactor::lu_position(int row, int column) const {
+  if (row >= column) return lower_position(row, column);
+  const int s = supernode_of_column_[row];
+  if (column < super_[s + 1]) {
+    const auto height = static_cast<std::size_t>(row_start_[s + 1] - row_start_[s]);
+    return value_start_[s] + static_cast<std::size_t>(column - super_[s]) * height + (row - super_[s]);
+  }
+  return upper_offset_ + lower_position(column, row);
 }
 
 // Splits the supernodal elimination tree into subtrees for the threads: starting from its roots,
@@ -159,11 +183,13 @@ void SinglePrecisionFactor::take_updates(int j, std::vector<int>& head, std::vec
   }
 }
 
-// Columns [c0, c1) of d's update of j: C = L_d(p1+c0:end, :) L_d(p1+c0:p1+c1, :)ᵀ (its lower
-// part), subtracted from j's block at the rows `map` gives.
+// Columns [c0, c1) of d's update of j, subtracted from j's block at the rows `map` gives.
+// Cholesky: C = L_d(p1+c0:end, :) L_d(p1+c0:p1+c1, :)ᵀ, its lower part. LU: the same with Uᵀ_d
+// as the right factor (L's side: j's columns at and below the diagonal), and with the two
+// factors swapped (U's side: j's columns as rows of U, strictly right of the diagonal).
 void SinglePrecisionFactor::apply_update(int j, const Update& u, int c0, int c1, const std::vector<int>& map,
                                          std::vector<float>& update) {
-  const int k1 = super_[j], height = row_start_[j + 1] - row_start_[j];
+  const int k1 = super_[j], k2 = super_[j + 1], height = row_start_[j + 1] - row_start_[j];
   float* block = values_.data() + value_start_[j];
   const int d = u.d, d_columns = super_[d + 1] - super_[d];
   const int d_first_row = row_start_[d], d_height = row_start_[d + 1] - d_first_row;
@@ -171,34 +197,83 @@ void SinglePrecisionFactor::apply_update(int j, const Update& u, int c0, int c1,
   if (width <= 0) return;
   const float one = 1.0f, zero = 0.0f;
   const float* source = values_.data() + value_start_[d] + u.p1 + c0;
-  float* c = update.data();
-  ssyrk_("L", "N", &width, &d_columns, &one, source, &d_height, &zero, c, &below);
-  if (further > 0)
-    sgemm_("N", "T", &further, &width, &d_columns, &one, source + width, &d_height, source, &d_height, &zero,
-           c + width, &below);
   const int* d_rows = rows_ + d_first_row + u.p1 + c0;
+  float* c = update.data();
+  if (!lu_) {
+    ssyrk_("L", "N", &width, &d_columns, &one, source, &d_height, &zero, c, &below);
+    if (further > 0)
+      sgemm_("N", "T", &further, &width, &d_columns, &one, source + width, &d_height, source, &d_height, &zero,
+             c + width, &below);
+  } else {
+    sgemm_("N", "T", &below, &width, &d_columns, &one, source, &d_height, source + upper_offset_, &d_height, &zero, c,
+           &below);
+  }
   for (int jj = 0; jj < width; ++jj) {
     float* target = block + static_cast<std::size_t>(d_rows[jj] - k1) * height;
     const float* from = c + static_cast<std::size_t>(jj) * below;
     for (int ii = jj; ii < below; ++ii) target[map[d_rows[ii]]] -= from[ii];
   }
+  if (!lu_) return;
+  sgemm_("N", "T", &below, &width, &d_columns, &one, source + upper_offset_, &d_height, source, &d_height, &zero, c,
+         &below);
+  float* upper = block + upper_offset_;
+  for (int jj = 0; jj < width; ++jj) {
+    const int u_row = d_rows[jj] - k1;
+    const float* from = c + static_cast<std::size_t>(jj) * below;
+    int ii = jj + 1;
+    for (; ii < below && d_rows[ii] < k2; ++ii) block[static_cast<std::size_t>(d_rows[ii] - k1) * height + u_row] -= from[ii];
+    float* target = upper + static_cast<std::size_t>(u_row) * height;
+    for (; ii < below; ++ii) target[map[d_rows[ii]]] -= from[ii];
+  }
 }
 
+// Cholesky: L_11 L_11ᵀ = A_11. LU: P_1 A_11 = L_11 U_11 with partial pivoting inside the block
+// (LAPACK sgetrf); a pivot below kSmallPivot times its column's largest entry in the block
+// counts as failed: pivoting stays inside supernodes, so a nearly singular block cannot be
+// rescued from outside.
 bool SinglePrecisionFactor::factor_diagonal(int j) {
   const int columns = super_[j + 1] - super_[j], height = row_start_[j + 1] - row_start_[j];
+  float* block = values_.data() + value_start_[j];
   int info = 0;
-  spotrf_("L", &columns, values_.data() + value_start_[j], &height, &info);
-  if (info != 0) failed_column_ = super_[j] + info - 1;
-  return info == 0;
+  if (!lu_) {
+    spotrf_("L", &columns, block, &height, &info);
+    if (info != 0) failed_column_ = super_[j] + info - 1;
+    return info == 0;
+  }
+  float* largest = column_largest_.data() + super_[j];
+  for (int c = 0; c < columns; ++c) {
+    const float* column = block + static_cast<std::size_t>(c) * height;
+    largest[c] = 0.0f;
+    for (int r = 0; r < columns; ++r) largest[c] = std::max(largest[c], std::abs(column[r]));
+  }
+  sgetrf_(&columns, &columns, block, &height, pivots_.data() + super_[j], &info);
+  for (int c = 0; c < columns; ++c)
+    if (!(std::abs(block[static_cast<std::size_t>(c) * height + c]) > kSmallPivot * largest[c])) {
+      failed_column_ = super_[j] + c;
+      return false;
+    }
+  return true;
 }
 
-// Rows [r0, r1) of j's part below its diagonal block: L_21 = A_21 L_11⁻ᵀ.
+// Rows [r0, r1) of j's part below its diagonal block. Cholesky: L_21 = A_21 L_11⁻ᵀ. LU:
+// L_21 = A_21 U_11⁻¹, and U_12ᵀ = (P_1 A_12)ᵀ L_11⁻ᵀ on Uᵀ's panel.
 void SinglePrecisionFactor::solve_below(int j, int r0, int r1) {
   const int columns = super_[j + 1] - super_[j], height = row_start_[j + 1] - row_start_[j], rows = r1 - r0;
   if (rows <= 0) return;
   const float one = 1.0f;
   float* block = values_.data() + value_start_[j];
-  strsm_("R", "L", "T", "N", &rows, &columns, &one, block, &height, block + columns + r0, &height);
+  if (!lu_) {
+    strsm_("R", "L", "T", "N", &rows, &columns, &one, block, &height, block + columns + r0, &height);
+    return;
+  }
+  strsm_("R", "U", "N", "N", &rows, &columns, &one, block, &height, block + columns + r0, &height);
+  float* upper = block + upper_offset_ + columns + r0;
+  const int* pivots = pivots_.data() + super_[j];
+  for (int c = 0; c < columns; ++c)
+    if (pivots[c] - 1 != c)
+      std::swap_ranges(upper + static_cast<std::size_t>(c) * height, upper + static_cast<std::size_t>(c) * height + rows,
+                       upper + static_cast<std::size_t>(pivots[c] - 1) * height);
+  strsm_("R", "L", "T", "U", &rows, &columns, &one, block, &height, upper, &height);
 }
 
 void SinglePrecisionFactor::map_rows(int j, std::vector<int>& map) const {
@@ -287,16 +362,49 @@ bool SinglePrecisionFactor::factor_top(std::vector<int>& head, std::vector<Works
 }
 
 bool SinglePrecisionFactor::factor(const double* lower_values) {
-  failed_column_ = -1;
-  const auto size = static_cast<std::ptrdiff_t>(values_.size());
+  lu_ = false;
   const auto entries = static_cast<std::ptrdiff_t>(target_.size());
-#pragma omp parallel
-  {
-#pragma omp for schedule(static)
-    for (std::ptrdiff_t k = 0; k < size; ++k) values_[k] = 0.0f;
-#pragma omp for schedule(static)
-    for (std::ptrdiff_t p = 0; p < entries; ++p) values_[target_[p]] = static_cast<float>(lower_values[p]);
+  zero_values(upper_offset_);
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t p = 0; p < entries; ++p) values_[target_[p]] = static_cast<float>(lower_values[p]);
+  return factor_values();
+}
+
+bool SinglePrecisionFactor::factor_lu(const double* lower_values, const double* upper_values) {
+  lu_ = true;
+  const auto entries = static_cast<std::ptrdiff_t>(target_.size());
+  if (lu_target_.empty()) {  // the first LU: its positions and Uᵀ's panels
+    const int* column_start = static_cast<const int*>(lower_->p);
+    const int* row_index = static_cast<const int*>(lower_->i);
+    lu_target_.resize(entries);
+    lu_target_transposed_.resize(entries);
+    for (int j = 0; j < static_cast<int>(lower_->ncol); ++j)
+      for (int p = column_start[j]; p < column_start[j + 1]; ++p) {
+        const int a = inverse_[row_index[p]], b = inverse_[j];
+        lu_target_[p] = lu_position(a, b);
+        lu_target_transposed_[p] = lu_position(b, a);
+      }
+    values_.resize(2 * upper_offset_);
+    pivots_.resize(n_);
+    column_largest_.resize(n_);
   }
+  zero_values(values_.size());
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t p = 0; p < entries; ++p) {
+    values_[lu_target_[p]] = static_cast<float>(lower_values[p]);
+    values_[lu_target_transposed_[p]] = static_cast<float>(upper_values[p]);
+  }
+  return factor_values();
+}
+
+void SinglePrecisionFactor::zero_values(std::size_t count) {
+  const auto size = static_cast<std::ptrdiff_t>(count);
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t k = 0; k < size; ++k) values_[k] = 0.0f;
+}
+
+bool SinglePrecisionFactor::factor_values() {
+  failed_column_ = -1;
   const int threads = static_cast<int>(thread_ranges_.size());
   const BlasThreads one_each(1);
   std::vector<std::vector<int>> heads(threads, std::vector<int>(supernodes_, -1));
@@ -324,13 +432,16 @@ bool SinglePrecisionFactor::factor(const double* lower_values) {
   return factor_top(head, work);
 }
 
+// One supernode of L z = y (LU: P_s first, L unit lower).
 void SinglePrecisionFactor::forward(int s, float* y, float* above, float* gathered) const {
   const int first = super_[s], columns = super_[s + 1] - first;
   const int height = row_start_[s + 1] - row_start_[s], below = height - columns;
   const float* block = values_.data() + value_start_[s];
   const int one = 1;
   const float plus = 1.0f, zero = 0.0f;
-  strsv_("L", "N", "N", &columns, block, &height, y + first, &one);
+  if (lu_)
+    for (int c = 0; c < columns; ++c) std::swap(y[first + c], y[first + pivots_[first + c] - 1]);
+  strsv_("L", "N", lu_ ? "U" : "N", &columns, block, &height, y + first, &one);
   if (below == 0) return;
   sgemv_("N", &below, &columns, &plus, block + columns, &height, y + first, &one, &zero, gathered, &one);
   const int* below_rows = rows_ + row_start_[s] + columns;
@@ -340,6 +451,7 @@ void SinglePrecisionFactor::forward(int s, float* y, float* above, float* gather
   }
 }
 
+// One supernode of Lᵀ w = z (LU: U w = z).
 void SinglePrecisionFactor::backward(int s, float* y, float* gathered) const {
   const int first = super_[s], columns = super_[s + 1] - first;
   const int height = row_start_[s + 1] - row_start_[s], below = height - columns;
@@ -349,9 +461,11 @@ void SinglePrecisionFactor::backward(int s, float* y, float* gathered) const {
   if (below > 0) {
     const int* below_rows = rows_ + row_start_[s] + columns;
     for (int i = 0; i < below; ++i) gathered[i] = y[below_rows[i]];
-    sgemv_("T", &below, &columns, &minus, block + columns, &height, gathered, &one, &plus, y + first, &one);
+    const float* right = block + (lu_ ? upper_offset_ : 0) + columns;
+    sgemv_("T", &below, &columns, &minus, right, &height, gathered, &one, &plus, y + first, &one);
   }
-  strsv_("L", "T", "N", &columns, block, &height, y + first, &one);
+  if (lu_) strsv_("U", "N", "N", &columns, block, &height, y + first, &one);
+  else strsv_("L", "T", "N", &columns, block, &height, y + first, &one);
 }
 
 void SinglePrecisionFactor::solve(const double* r, double* x) {

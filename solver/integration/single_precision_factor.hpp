@@ -1,7 +1,7 @@
-// Numeric supernodal Cholesky factorisation A = L Lᵀ and its solves in single precision, on the
-// supernodal symbolic factor that CHOLMOD's cholmod_analyze computed (its fill-reducing
-// permutation P, postordered supernodes and their row structure; CHOLMOD 3 factors in double
-// only).
+// Numeric supernodal Cholesky factorisation A = L Lᵀ, or LU factorisation A = L U of a matrix
+// with a symmetric pattern, and their solves in single precision, on the supernodal symbolic
+// factor that CHOLMOD's cholmod_analyze computed (its fill-reducing permutation P, postordered
+// supernodes and their row structure; CHOLMOD 3 factors in double only, and only by Cholesky).
 //
 // Algorithm: left-looking supernodal Cholesky as in CHOLMOD's own numeric phase (Chen, Davis,
 // Hager & Rajamanickam, ACM TOMS 35(3):22, 2008, §4): supernode j, columns k1..k2-1 of P A Pᵀ,
@@ -21,6 +21,16 @@
 // (sched_yield) after every call and took a third of the run's CPU time from the element loops. Solves split the same way: the forward substitution runs
 // the subtrees concurrently, each thread gathering its updates of the rows above in its own
 // vector, then the top part; the back substitution runs the top part, then the subtrees.
+//
+// LU: the same supernodes and tree, each holding a panel of L (its diagonal block whole) and one
+// of Uᵀ (laid out like L's). Every update has two products, L_d Uᵀ_dᵀ for L's columns and
+// Uᵀ_d L_dᵀ for U's rows; the diagonal block is factored with partial pivoting inside it
+// (sgetrf, P_s A_ss = L_ss U_ss); then L_21 = A_21 U_ss⁻¹ and U_12 = L_ss⁻¹ P_s A_12. With a
+// symmetric pattern the structure of Uᵀ is that of L, and pivoting inside a supernode moves no
+// entry out of it. It is static pivoting: a pivot that the block cannot supply fails the
+// factorisation (the caller then turns to a pivoting LU). Used for Newton matrices made
+// unsymmetric by Coulomb friction, which are mildly so (the friction traction's dependence on the
+// normal gap, on the contact surface's unknowns only).
 //
 // Why: the factor only preconditions GMRES (IDA's Newton-Krylov), where single precision is
 // enough (the solution carries a relative error of about κ × 6e-8, as the single-precision solve
@@ -45,7 +55,11 @@ class SinglePrecisionFactor {
   // Factor the matrix with these values of `lower` (its x array layout). Returns false if a
   // pivot is not positive (failed_column() tells which column of P A Pᵀ).
   bool factor(const double* lower_values);
-  // x = A⁻¹ r (original order), with the last successful factor().
+  // LU of the unsymmetric matrix A with A(i, j) = lower_values[p] and A(j, i) = upper_values[p]
+  // for entry p at row i >= column j of `lower`. Returns false on a pivot below kSmallPivot
+  // times its column's largest entry in its diagonal block.
+  bool factor_lu(const double* lower_values, const double* upper_values);
+  // x = A⁻¹ r (original order), with the last successful factor() or factor_lu().
   void solve(const double* r, double* x);
 
   long failed_column() const { return failed_column_; }
@@ -65,6 +79,14 @@ class SinglePrecisionFactor {
   // Supernodes of the top part whose work (columns × rows²) is above this are shared by the
   // threads; the barriers that sharing needs cost more than smaller ones.
   static constexpr double kSharedSupernodeWork = 1e7;
+  // LU: a pivot below this times its column's largest entry in the diagonal block fails: it
+  // would carry single precision's round-off (6e-8 of the column) at a relative 6e-2.
+  static constexpr float kSmallPivot = 1e-6f;
+
+  std::size_t lower_position(int row, int column) const;  // in values_, of P A Pᵀ, row >= column
+  std::size_t lu_position(int row, int column) const;     // in values_, of P A Pᵀ, any entry
+  void zero_values(std::size_t count);
+  bool factor_values();  // the numeric factorisation of the values loaded
 
   bool factor_range(int first, int last, std::vector<int>& head, Workspace& work);
   bool factor_top(std::vector<int>& head, std::vector<Workspace>& work);
@@ -92,8 +114,16 @@ class SinglePrecisionFactor {
   int supernodes_ = 0, n_ = 0;
   std::size_t max_update_ = 0;
   std::vector<int> supernode_of_column_;
+  const cholmod_sparse_struct* lower_ = nullptr;
+  std::vector<int> inverse_;         // column of P A Pᵀ per original column
   std::vector<std::size_t> target_;  // per entry of `lower`: its position in values_
-  std::vector<float> values_;
+  // LU: per entry of `lower` (row i >= column j): the positions of A(i, j) and of A(j, i).
+  std::vector<std::size_t> lu_target_, lu_target_transposed_;
+  std::vector<float> values_;  // L's panels, then (LU) Uᵀ's from upper_offset_
+  std::size_t upper_offset_ = 0;
+  bool lu_ = false;           // the last factorisation is an LU
+  std::vector<int> pivots_;   // LU: per column of P A Pᵀ, sgetrf's pivot inside its supernode (from 1)
+  std::vector<float> column_largest_;  // LU: per column, its largest entry in its diagonal block
   // Per supernode: the next of its rows to update an ancestor with, and its list successor.
   std::vector<int> next_row_, next_in_list_;
   // Per thread: the subtrees given to it, as postorder ranges [first, last) of supernodes; top_:

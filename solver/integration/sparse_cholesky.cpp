@@ -2,6 +2,7 @@
 #include "integration/sparse_cholesky.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include <cholmod.h>
@@ -155,14 +156,41 @@ bool SparseCholesky::factor(Mat A) {
   MatInfo info;
   petsc_check(MatGetInfo(A, MAT_LOCAL, &info), "MatGetInfo");
   if (static_cast<PetscInt>(info.nz_used) != entries_) analyse(A);
+  bool unsymmetric = false;
   {
     MatrixValues values(A);
+    const double* v = values.data();
+    double largest = 0.0, skew = 0.0;
+    for (std::size_t m = 0; m < entry_.size(); ++m) {
+      largest = std::max({largest, std::abs(v[entry_[m]]), std::abs(v[mirror_[m]])});
+      skew = std::max(skew, std::abs(v[entry_[m]] - v[mirror_[m]]));
+    }
+    unsymmetric = precision_ == Precision::single_precision && skew > kSymmetryTolerance * largest;
     double* x = static_cast<double*>(lower_->x);
-    for (std::size_t m = 0; m < entry_.size(); ++m) x[m] = 0.5 * (values.data()[entry_[m]] + values.data()[mirror_[m]]);
+    if (unsymmetric) {
+      // lower_ holds (J_ji, J_ij) at row j >= column i, J_ij being entry_'s.
+      transposed_values_.resize(entry_.size());
+      for (std::size_t m = 0; m < entry_.size(); ++m) {
+        x[m] = v[mirror_[m]];
+        transposed_values_[m] = v[entry_[m]];
+      }
+    } else {
+      for (std::size_t m = 0; m < entry_.size(); ++m) x[m] = 0.5 * (v[entry_[m]] + v[mirror_[m]]);
+    }
   }
   matrix_ = A;
   ++factorizations_;
   long failed_column = -1;
+  if (unsymmetric) {
+    ++lu_factorizations_;
+    if (!single_->factor_lu(static_cast<const double*>(lower_->x), transposed_values_.data())) {
+      last_failure_ = fmt::format("the Newton matrix's single-precision LU found no pivot inside a supernode (free "
+                                  "column {} of {})",
+                                  single_->failed_column(), static_cast<long>(lower_->ncol));
+      return false;
+    }
+    return true;
+  }
   if (precision_ == Precision::single_precision) {
     if (!single_->factor(static_cast<const double*>(lower_->x))) failed_column = single_->failed_column();
   } else {

@@ -19,7 +19,11 @@
 // while the matrix keeps its number of entries (its pattern); a changed pattern starts afresh.
 //
 // Precision::single_precision factors and solves in single precision on CHOLMOD's symbolic
-// factor (SinglePrecisionFactor, single_precision_factor.hpp). For solves that precondition an
+// factor (SinglePrecisionFactor, single_precision_factor.hpp), and factors an unsymmetric J_ff
+// (|J_ij - J_ji| above kSymmetryTolerance times its largest entry: Coulomb friction) itself by
+// LU on the same structure, so that solve() returns J⁻¹ b, not S_ff's: GMRES then gets the
+// exact Newton matrix as its preconditioner at about twice the Cholesky factor's cost instead
+// of a pivoting LU's (MUMPS, whose factor has 2.3 times the Cholesky factor's entries). For solves that precondition an
 // iteration (IDA's GMRES), not for exact ones: the solution carries a relative error of about
 // κ(S_ff) × 6e-8. Why: a solve reads the whole factor twice and is memory-bound, so half the
 // bytes take about half the time, and the factorisation's BLAS-3 runs about twice as fast in
@@ -50,14 +54,16 @@ class SparseCholesky {
   SparseCholesky(const SparseCholesky&) = delete;
   SparseCholesky& operator=(const SparseCholesky&) = delete;
 
-  // Factor S_ff of A. Returns false when S_ff is not positive definite (last_failure() names
-  // the column); throws for a non-square or unsymmetric-pattern matrix and CHOLMOD errors.
+  // Factor S_ff of A (single precision, unsymmetric J_ff: J_ff by LU). Returns false when S_ff
+  // is not positive definite or the LU finds no pivot (last_failure() names the column);
+  // throws for a non-square or unsymmetric-pattern matrix and CHOLMOD errors.
   // A must stay unchanged until the last solve() with this factorisation (J_fp is read there).
   bool factor(Mat A);
   // x = J⁻¹ b in the sense above. b and x are sequential vectors of A's size.
   void solve(Vec b, Vec x);
 
-  long factorizations() const { return factorizations_; }
+  long factorizations() const { return factorizations_; }  // LU ones included
+  long lu_factorizations() const { return lu_factorizations_; }
   // Precision::single_precision: subtrees of the elimination tree factored concurrently by
   // the OpenMP threads (0 on one thread).
   int concurrent_subtrees() const;
@@ -87,8 +93,12 @@ class SparseCholesky {
   cholmod_sparse_struct* lower_ = nullptr;
   cholmod_factor_struct* factor_ = nullptr;
   cholmod_dense_struct *rhs_ = nullptr, *solution_ = nullptr, *work_y_ = nullptr, *work_e_ = nullptr;
-  long factorizations_ = 0;
+  long factorizations_ = 0, lu_factorizations_ = 0;
+  std::vector<double> transposed_values_;  // LU: J_ij for lower_'s entry at (j, i), J_ji being in lower_->x
   std::string last_failure_;
+  // Relative skew below which J_ff counts as symmetric: element matrices are symmetric to
+  // round-off, friction's coupling is of the order of the contact penalty.
+  static constexpr double kSymmetryTolerance = 1e-10;
 };
 
 }  // namespace needlefem

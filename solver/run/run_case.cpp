@@ -190,6 +190,7 @@ nlohmann::json summary_json(const Case& c, const material::Material* material, c
                                       {"failed_solves", record.rejections.failed_solves}}},
                  {"linear_solver", c.text("integration.linear_solver")},
                  {"factorisations", {{"cholesky", record.factorisations.cholesky},
+                                     {"lu", record.factorisations.lu},
                                      {"ksp", record.factorisations.ksp}}},
                  {"initial_rates", {{"converged", record.initial_rates.converged},
                                     {"iterations", record.initial_rates.iterations}}},

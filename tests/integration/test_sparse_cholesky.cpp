@@ -3,7 +3,8 @@
 // explicitly symmetrised free block and the prescribed columns moved to the right-hand side;
 // an indefinite matrix is a failed factorisation; refactoring with new values stays exact. The
 // single-precision factorisation agrees with CHOLMOD's double one to single precision, on one
-// thread and with subtrees factored on two.
+// thread and with subtrees factored on two; in single precision an unsymmetric matrix is
+// factored by LU and solved exactly (to single precision).
 #include <cmath>
 #include <string>
 #include <vector>
@@ -49,8 +50,9 @@ Mat grid_matrix(double diagonal, double skew) {
   return A;
 }
 
-// 27-point stencil on a side^3 grid: 27 on the diagonal, -1 to each neighbour (SPD).
-Mat cube_matrix(PetscInt side) {
+// 27-point stencil on a side^3 grid: 27 on the diagonal, -1 - skew*(column > row ? 1 : -1) to
+// each neighbour (skew = 0: SPD).
+Mat cube_matrix(PetscInt side, double skew = 0.0) {
   Mat A = nullptr;
   const PetscInt size = side * side * side;
   petsc_check(MatCreateSeqAIJ(PETSC_COMM_SELF, size, size, 27, nullptr, &A), "MatCreateSeqAIJ");
@@ -63,7 +65,8 @@ Mat cube_matrix(PetscInt side) {
               const PetscInt ni = i + di, nj = j + dj, nk = k + dk;
               if (ni < 0 || ni >= side || nj < 0 || nj >= side || nk < 0 || nk >= side) continue;
               const PetscInt row = (i * side + j) * side + k, column = (ni * side + nj) * side + nk;
-              petsc_check(MatSetValue(A, row, column, row == column ? 27.0 : -1.0, INSERT_VALUES), "MatSetValue");
+              const double value = row == column ? 27.0 : -1.0 - skew * (column > row ? 1.0 : -1.0);
+              petsc_check(MatSetValue(A, row, column, value, INSERT_VALUES), "MatSetValue");
             }
   assemble(A);
   return A;
@@ -190,6 +193,73 @@ TEST(SparseCholesky, SinglePrecisionFactorOnOneAndTwoThreadsAgreesWithDouble) {
   EXPECT_LT(relative_difference(solutions[1], solutions[0]), 1e-5);
   for (Vec v : {b, reference, solutions[0], solutions[1]}) VecDestroy(&v);
   MatDestroy(&A);
+}
+
+// Two unknowns per point of cube_matrix's grid, each coupled like cube_matrix(side), and the
+// pair at a point by [[0, rotation], [-rotation, 0]]: its symmetric part stays cube_matrix's
+// (SPD), but for rotation > 27 each point's block [[27, r], [-r, 27]] needs a row exchange to
+// be factored stably, as friction's sliding blocks do.
+Mat paired_cube_matrix(PetscInt side, double rotation) {
+  Mat scalar = cube_matrix(side), A = nullptr;
+  const PetscInt size = rows_of(scalar);
+  petsc_check(MatCreateSeqAIJ(PETSC_COMM_SELF, 2 * size, 2 * size, 2 * 27, nullptr, &A), "MatCreateSeqAIJ");
+  for (PetscInt row = 0; row < size; ++row) {
+    PetscInt count = 0;
+    const PetscInt* columns = nullptr;
+    const PetscScalar* values = nullptr;
+    petsc_check(MatGetRow(scalar, row, &count, &columns, &values), "MatGetRow");
+    for (PetscInt k = 0; k < count; ++k)
+      for (PetscInt half = 0; half < 2; ++half)
+        petsc_check(MatSetValue(A, 2 * row + half, 2 * columns[k] + half, values[k], INSERT_VALUES), "MatSetValue");
+    petsc_check(MatRestoreRow(scalar, row, &count, &columns, &values), "MatRestoreRow");
+    petsc_check(MatSetValue(A, 2 * row, 2 * row + 1, rotation, INSERT_VALUES), "MatSetValue");
+    petsc_check(MatSetValue(A, 2 * row + 1, 2 * row, -rotation, INSERT_VALUES), "MatSetValue");
+  }
+  assemble(A);
+  MatDestroy(&scalar);
+  return A;
+}
+
+// In single precision an unsymmetric free block is factored by LU on the Cholesky structure:
+// the solve is J⁻¹ b itself (prescribed rows are identity rows), against MUMPS LU in double, on
+// one thread and with subtrees on two: a mildly unsymmetric matrix (cube_matrix with skew 0.6,
+// diagonally dominant) and one that needs row exchanges (paired_cube_matrix, rotation 40). The
+// unsymmetric part changes the answer by far more than the tolerance, and a symmetric matrix
+// still takes the Cholesky path.
+TEST(SparseCholesky, SinglePrecisionLuOfUnsymmetricMatricesOnOneAndTwoThreadsAgreesWithMumps) {
+  constexpr PetscInt kCubeSide = 14;
+  const int threads_before = omp_get_max_threads();
+  const auto check_lu = [&](Mat A, Mat symmetric_part, const char* name) {
+    const std::vector<char> prescribed = prescribe_rows(A);
+    Vec b = right_hand_side(rows_of(A)), reference = lu_solve(A, b);
+    for (int threads : {1, 2}) {
+      omp_set_num_threads(threads);  // the subtrees are planned at the first factor()
+      SparseCholesky single(prescribed, SparseCholesky::Precision::single_precision);
+      ASSERT_TRUE(single.factor(A)) << single.last_failure();
+      Vec x = cholesky_solve(single, b);
+      const double error = relative_difference(x, reference);
+      std::printf("single-precision LU, %s, %d thread(s), %d concurrent subtrees: |x - x_MUMPS| / |x_MUMPS| = %.2e\n",
+                  name, threads, single.concurrent_subtrees(), error);
+      EXPECT_LT(error, 1e-5);
+      EXPECT_GT(error, 1e-10);  // single precision
+      EXPECT_EQ(single.lu_factorizations(), 1);
+      VecDestroy(&x);
+    }
+    omp_set_num_threads(threads_before);
+    prescribe_rows(symmetric_part);
+    Vec symmetric_solution = lu_solve(symmetric_part, b);
+    const double distance = relative_difference(symmetric_solution, reference);
+    std::printf("  (the symmetric matrix's solution is %.2e away)\n", distance);
+    EXPECT_GT(distance, 1e-2);
+    SparseCholesky single(prescribed, SparseCholesky::Precision::single_precision);
+    ASSERT_TRUE(single.factor(symmetric_part)) << single.last_failure();
+    EXPECT_EQ(single.lu_factorizations(), 0);
+    for (Vec v : {b, reference, symmetric_solution}) VecDestroy(&v);
+    MatDestroy(&symmetric_part);
+    MatDestroy(&A);
+  };
+  check_lu(cube_matrix(kCubeSide, 0.6), cube_matrix(kCubeSide), "skew 0.6");
+  check_lu(paired_cube_matrix(kCubeSide, 40.0), paired_cube_matrix(kCubeSide, 0.0), "rotation 40");
 }
 
 TEST(SparseCholesky, UnsymmetricMatrixSolvesWithItsSymmetricFreeBlock) {

@@ -412,7 +412,9 @@ DaeStatus MechanicsSystem::solve_jacobian(Vec b, Vec x) {
 }
 
 MechanicsSystem::Factorisations MechanicsSystem::factorisations() const {
-  return {cholesky_ ? cholesky_->factorizations() : 0, solver_->factorizations()};
+  if (!cholesky_) return {0, 0, solver_->factorizations()};
+  return {cholesky_->factorizations() - cholesky_->lu_factorizations(), cholesky_->lu_factorizations(),
+          solver_->factorizations()};
 }
 
 MechanicsSystem::Resultants MechanicsSystem::resultants(Vec y, const std::vector<std::string>& surfaces) const {

@@ -87,11 +87,13 @@ class MechanicsSystem final : public DaeSystem {
     long failed_solves = 0;          // ... or solve with it
   };
   const Rejections& rejections() const { return rejections_; }
-  // How the Newton matrices were factored: by sparse Cholesky, and by the KSP solver (all of
-  // them for "mumps" and the Krylov methods; with "cholmod", the setups whose symmetric part
-  // was not positive definite).
+  // How the Newton matrices were factored: by sparse Cholesky, by the single-precision LU on
+  // its structure (unsymmetric matrices where the factor preconditions GMRES), and by the KSP
+  // solver (all of them for "mumps" and the Krylov methods; with "cholmod", the setups that
+  // these could not factor).
   struct Factorisations {
     long cholesky = 0;
+    long lu = 0;
     long ksp = 0;
   };
   Factorisations factorisations() const;
