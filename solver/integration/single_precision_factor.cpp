@@ -32,6 +32,18 @@ void sgemv_(const char* trans, const int* m, const int* n, const float* alpha, c
             const float* x, const int* incx, const float* beta, float* y, const int* incy);
 }
 
+// Subtracts an update C (count x width, column-major) from a panel of supernode j (first column
+// k1, leading dimension height): C's column jj from j's column column_rows[jj] - k1, its row ii
+// from j's row map[rows[ii]]. lower_only: rows ii >= jj only (rows then starts at column_rows).
+void subtract_update(float* panel, int height, int k1, const int* column_rows, int width, const int* rows, int count,
+                     const std::vector<int>& map, const float* c, bool lower_only) {
+  for (int jj = 0; jj < width; ++jj) {
+    float* target = panel + static_cast<std::size_t>(column_rows[jj] - k1) * height;
+    const float* from = c + static_cast<std::size_t>(jj) * count;
+    for (int ii = lower_only ? jj : 0; ii < count; ++ii) target[map[rows[ii]]] -= from[ii];
+  }
+}
+
 }  // namespace
 
 void SinglePrecisionFactor::analyse(const cholmod_factor& symbolic, const cholmod_sparse& lower) {
@@ -184,47 +196,41 @@ void SinglePrecisionFactor::take_updates(int j, std::vector<int>& head, std::vec
 }
 
 // Columns [c0, c1) of d's update of j, subtracted from j's block at the rows `map` gives.
-// Cholesky: C = L_d(p1+c0:end, :) L_d(p1+c0:p1+c1, :)ᵀ, its lower part. LU: the same with Uᵀ_d
-// as the right factor (L's side: j's columns at and below the diagonal), and with the two
-// factors swapped (U's side: j's columns as rows of U, strictly right of the diagonal).
+// Cholesky: C = L_d(p1+c0:end, :) L_d(p1+c0:p1+c1, :)ᵀ, its lower part. LU: for L's side
+// (j's diagonal block whole, and below it) C = L_d(p1:end, :) Uᵀ_d(p1+c0:p1+c1, :)ᵀ; for U's
+// side (j's columns as rows of U, right of the diagonal block) C = Uᵀ_d(p2:end, :)
+// L_d(p1+c0:p1+c1, :)ᵀ. Each share writes only its own columns of j's panels.
 void SinglePrecisionFactor::apply_update(int j, const Update& u, int c0, int c1, const std::vector<int>& map,
                                          std::vector<float>& update) {
-  const int k1 = super_[j], k2 = super_[j + 1], height = row_start_[j + 1] - row_start_[j];
+  const int k1 = super_[j], height = row_start_[j + 1] - row_start_[j];
   float* block = values_.data() + value_start_[j];
   const int d = u.d, d_columns = super_[d + 1] - super_[d];
   const int d_first_row = row_start_[d], d_height = row_start_[d + 1] - d_first_row;
-  const int width = c1 - c0, below = d_height - u.p1 - c0, further = below - width;
+  const int width = c1 - c0;
   if (width <= 0) return;
   const float one = 1.0f, zero = 0.0f;
-  const float* source = values_.data() + value_start_[d] + u.p1 + c0;
-  const int* d_rows = rows_ + d_first_row + u.p1 + c0;
+  const float* d_block = values_.data() + value_start_[d];
+  const int* d_rows = rows_ + d_first_row;
   float* c = update.data();
   if (!lu_) {
+    const int below = d_height - u.p1 - c0, further = below - width;
+    const float* source = d_block + u.p1 + c0;
     ssyrk_("L", "N", &width, &d_columns, &one, source, &d_height, &zero, c, &below);
     if (further > 0)
       sgemm_("N", "T", &further, &width, &d_columns, &one, source + width, &d_height, source, &d_height, &zero,
              c + width, &below);
-  } else {
-    sgemm_("N", "T", &below, &width, &d_columns, &one, source, &d_height, source + upper_offset_, &d_height, &zero, c,
-           &below);
+    subtract_update(block, height, k1, d_rows + u.p1 + c0, width, d_rows + u.p1 + c0, below, map, c, true);
+    return;
   }
-  for (int jj = 0; jj < width; ++jj) {
-    float* target = block + static_cast<std::size_t>(d_rows[jj] - k1) * height;
-    const float* from = c + static_cast<std::size_t>(jj) * below;
-    for (int ii = jj; ii < below; ++ii) target[map[d_rows[ii]]] -= from[ii];
-  }
-  if (!lu_) return;
-  sgemm_("N", "T", &below, &width, &d_columns, &one, source + upper_offset_, &d_height, source, &d_height, &zero, c,
-         &below);
-  float* upper = block + upper_offset_;
-  for (int jj = 0; jj < width; ++jj) {
-    const int u_row = d_rows[jj] - k1;
-    const float* from = c + static_cast<std::size_t>(jj) * below;
-    int ii = jj + 1;
-    for (; ii < below && d_rows[ii] < k2; ++ii) block[static_cast<std::size_t>(d_rows[ii] - k1) * height + u_row] -= from[ii];
-    float* target = upper + static_cast<std::size_t>(u_row) * height;
-    for (; ii < below; ++ii) target[map[d_rows[ii]]] -= from[ii];
-  }
+  const float* d_upper = d_block + upper_offset_;
+  const int all = d_height - u.p1, further = d_height - u.p2;
+  sgemm_("N", "T", &all, &width, &d_columns, &one, d_block + u.p1, &d_height, d_upper + u.p1 + c0, &d_height, &zero,
+         c, &all);
+  subtract_update(block, height, k1, d_rows + u.p1 + c0, width, d_rows + u.p1, all, map, c, false);
+  if (further <= 0) return;
+  sgemm_("N", "T", &further, &width, &d_columns, &one, d_upper + u.p2, &d_height, d_block + u.p1 + c0, &d_height,
+         &zero, c, &further);
+  subtract_update(block + upper_offset_, height, k1, d_rows + u.p1 + c0, width, d_rows + u.p2, further, map, c, false);
 }
 
 // Cholesky: L_11 L_11ᵀ = A_11. LU: P_1 A_11 = L_11 U_11 with partial pivoting inside the block

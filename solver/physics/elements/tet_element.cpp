@@ -153,7 +153,8 @@ ElementResult TetElementKernel::evaluate(const ElementGeometry& geometry, const 
                                          double material_tangent_scale) const {
   const int n = geometry.nodes, dofs = 3 * n, points = geometry.points;
   ElementResult result;
-  result.points.resize(points);
+  if (dofs > kMaxElementDofs || points > kMaxElementPoints)
+    throw std::invalid_argument("element evaluation: more nodes or quadrature points than a TET10's");
 
   // Pass 1: F and J at every point (the mixed form needs v_e before any stress).
   double current_volume = 0.0;
@@ -172,14 +173,13 @@ ElementResult TetElementKernel::evaluate(const ElementGeometry& geometry, const 
     current_volume += geometry.weight[q] * det_f;
   }
 
-  result.residual.assign(dofs, 0.0);
   if (with_tangent) result.stiffness.assign(static_cast<std::size_t>(dofs) * dofs, 0.0);
-  std::vector<double>& r = result.residual;
+  double* r = result.residual.data();
   std::vector<double>& K = result.stiffness;
   const bool mixed = formulation_ == Formulation::mean_dilatation;
   std::vector<double> B(with_tangent ? kVoigt * dofs : 0), DB(with_tangent ? kVoigt * dofs : 0);
-  std::vector<double> spatial_gradient(dofs);              // n_ai = ∂N_a/∂x_i
-  std::vector<double> volume_gradient(mixed ? dofs : 0);   // ∂v_e/∂u
+  std::array<double, kMaxElementDofs> spatial_gradient{};  // n_ai = ∂N_a/∂x_i
+  std::array<double, kMaxElementDofs> volume_gradient{};   // ∂v_e/∂u (mixed)
   std::vector<double> volume_hessian(mixed && with_tangent ? K.size() : 0);  // ∂²v_e/∂u²
   double pressure_volume_integral = 0.0;
 
@@ -227,16 +227,16 @@ ElementResult TetElementKernel::evaluate(const ElementGeometry& geometry, const 
     // Isochoric part: S_iso = S⁰_iso - Σ Q_i.
     const auto& isochoric = tissue()->isochoric;
     const Mat3d C = material::right_cauchy_green(F);
-    const Mat3d elastic_stress = isochoric.elastic.stress(C);
+    const auto [elastic_stress, elastic_energy] = isochoric.elastic.stress_and_energy(C);
     point.elastic_stress = to_voigt(elastic_stress);
     Mat3d stress = elastic_stress;
     if (viscous)
       for (int i = 0; i < prony_terms(); ++i)
         stress -= from_voigt(viscous + (static_cast<std::size_t>(q) * prony_terms() + i) * kVoigt);
     const std::array<double, kVoigt> stress_v = to_voigt(stress);
-    result.energy += w * isochoric.elastic.energy(C);
+    result.energy += w * elastic_energy;
 
-    add_green_strain_transpose(point.deformation_gradient, G, n, stress_v, w, r.data());
+    add_green_strain_transpose(point.deformation_gradient, G, n, stress_v, w, r);
 
     if (with_tangent) {
       green_strain_operator(point.deformation_gradient, G, n, B.data());

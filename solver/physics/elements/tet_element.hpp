@@ -80,11 +80,16 @@ struct PointResponse {
   std::array<double, kVoigt * kVoigt> elastic_tangent{};  // D⁰ = ∂S⁰_iso,v/∂E_v (with tangent)
 };
 
+constexpr int kMaxElementDofs = 30;    // TET10
+constexpr int kMaxElementPoints = 4;   // TET10's rule
+
+// Fixed-size arrays, not vectors, for what every residual needs: four heap allocations per
+// element and residual had cost a quarter of a residual's time.
 struct ElementResult {
-  bool inverted = false;            // det F <= 0 at some point (or θ <= 0): nothing else is valid
-  std::vector<double> residual;     // 3n: internal force
-  std::vector<double> stiffness;    // 3n x 3n row-major (when requested)
-  std::vector<PointResponse> points;
+  bool inverted = false;                             // det F <= 0 at some point (or θ <= 0): nothing else is valid
+  std::array<double, kMaxElementDofs> residual{};   // the first 3n: internal force
+  std::vector<double> stiffness;                     // 3n x 3n row-major (when requested)
+  std::array<PointResponse, kMaxElementPoints> points{};  // the first geometry.points
   double pressure = 0.0;            // mixed: U'(θ); displacement: volume average of U'(J)
   double energy = 0.0;              // elastic energy of the element (instantaneous, Q not counted)
 };

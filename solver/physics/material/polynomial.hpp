@@ -21,6 +21,8 @@
 // exactly with Dual numbers (tensor.hpp); tests check them against finite differences.
 #pragma once
 
+#include <utility>
+
 #include "physics/material/tensor.hpp"
 
 namespace needlefem::material {
@@ -32,23 +34,20 @@ struct PolynomialIsochoric {
 
   template <class T>
   T energy(const Mat3<T>& C) const {
-    const Invariants<T> inv(C);
-    const T a = inv.i1_bar - T(3.0), b = inv.i2_bar - T(3.0);
-    return T(c10) * a + T(c01) * b + T(c20) * a * a + T(c11) * a * b + T(c02) * b * b;
+    return energy(Invariants<T>(C));
   }
 
   // S_iso = 2 ∂W_iso/∂C.
   template <class T>
   Mat3<T> stress(const Mat3<T>& C) const {
+    return stress(C, Invariants<T>(C));
+  }
+
+  // Both from one evaluation of the invariants (the residual needs both at every point).
+  template <class T>
+  std::pair<Mat3<T>, T> stress_and_energy(const Mat3<T>& C) const {
     const Invariants<T> inv(C);
-    const T a = inv.i1_bar - T(3.0), b = inv.i2_bar - T(3.0);
-    const T w1 = T(c10) + T(2.0 * c20) * a + T(c11) * b;
-    const T w2 = T(c01) + T(c11) * a + T(2.0 * c02) * b;
-    const Mat3<T> identity = Mat3<T>::identity();
-    const Mat3<T> c_inv = inverse(C);
-    const Mat3<T> d_i1_bar = inv.j_m23 * (identity - (inv.i1 / T(3.0)) * c_inv);
-    const Mat3<T> d_i2_bar = inv.j_m43 * (inv.i1 * identity - C - (T(2.0) / T(3.0) * inv.i2) * c_inv);
-    return T(2.0) * (w1 * d_i1_bar + w2 * d_i2_bar);
+    return {stress(C, inv), energy(inv)};
   }
 
  private:
@@ -58,13 +57,31 @@ struct PolynomialIsochoric {
     explicit Invariants(const Mat3<T>& C) {
       i1 = trace(C);
       i2 = T(0.5) * (i1 * i1 - double_dot(C, transpose(C)));
-      using std::pow;
-      j_m23 = pow(det(C), -1.0 / 3.0);  // J^(-2/3) = (det C)^(-1/3)
+      using std::cbrt;
+      j_m23 = T(1.0) / cbrt(det(C));  // J^(-2/3) = (det C)^(-1/3); cbrt costs half of pow
       j_m43 = j_m23 * j_m23;
       i1_bar = j_m23 * i1;
       i2_bar = j_m43 * i2;
     }
   };
+
+  template <class T>
+  T energy(const Invariants<T>& inv) const {
+    const T a = inv.i1_bar - T(3.0), b = inv.i2_bar - T(3.0);
+    return T(c10) * a + T(c01) * b + T(c20) * a * a + T(c11) * a * b + T(c02) * b * b;
+  }
+
+  template <class T>
+  Mat3<T> stress(const Mat3<T>& C, const Invariants<T>& inv) const {
+    const T a = inv.i1_bar - T(3.0), b = inv.i2_bar - T(3.0);
+    const T w1 = T(c10) + T(2.0 * c20) * a + T(c11) * b;
+    const T w2 = T(c01) + T(c11) * a + T(2.0 * c02) * b;
+    const Mat3<T> identity = Mat3<T>::identity();
+    const Mat3<T> c_inv = inverse(C);
+    const Mat3<T> d_i1_bar = inv.j_m23 * (identity - (inv.i1 / T(3.0)) * c_inv);
+    const Mat3<T> d_i2_bar = inv.j_m43 * (inv.i1 * identity - C - (T(2.0) / T(3.0) * inv.i2) * c_inv);
+    return T(2.0) * (w1 * d_i1_bar + w2 * d_i2_bar);
+  }
 };
 
 struct VolumetricQuadratic {

@@ -39,6 +39,10 @@ inline Dual pow(Dual a, double p) {
   const double r = std::pow(a.v, p);
   return {r, p * std::pow(a.v, p - 1.0) * a.d};
 }
+inline Dual cbrt(Dual a) {
+  const double r = std::cbrt(a.v);
+  return {r, a.d / (3.0 * r * r)};
+}
 inline Dual log(Dual a) { return {std::log(a.v), a.d / a.v}; }
 inline Dual exp(Dual a) {
   const double e = std::exp(a.v);

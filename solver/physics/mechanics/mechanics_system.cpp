@@ -308,8 +308,8 @@ DaeStatus MechanicsSystem::setup_jacobian(double t, Vec y, Vec ydot, double cj) 
 #pragma omp for schedule(static)
           for (std::size_t e = 0; e < count; ++e)
             if (terms && !inverted)
-              std::move(batch[e].points.begin(), batch[e].points.end(),
-                        condensation_.begin() + static_cast<std::ptrdiff_t>((first + e) * geometry_[first + e].points));
+              std::copy_n(batch[e].points.begin(), geometry_[first + e].points,
+                          condensation_.begin() + static_cast<std::ptrdiff_t>((first + e) * geometry_[first + e].points));
         }
       }
       check(MatSeqAIJRestoreArray(jacobian_, &values), "MatSeqAIJRestoreArray");
