@@ -195,5 +195,51 @@ TEST(TetElement, GreenStrainProductsWithoutBMatchTheOperator) {
   }
 }
 
+// The single-precision condensation point against the double-precision products: D⁰ (symmetric,
+// stored as its upper triangle) B u and w Bᵀ s, to single precision but not to double.
+TEST(TetElement, CondensationPointMatchesTheDoubleProductsToSinglePrecision) {
+  const auto x = element_coordinates(10);
+  const ElementGeometry geometry = element_geometry(10, x.data());
+  const auto material = tissue_material(1e6, true);
+  const auto displacement = random_values(30, 0.05 * kSize, 21), u = random_values(30, 1e-4, 22);
+  const auto stress = random_values(6, 500.0, 23);
+  const std::array<double, kVoigt> s{stress[0], stress[1], stress[2], stress[3], stress[4], stress[5]};
+  const ElementResult result =
+      TetElementKernel(material, Formulation::mean_dilatation).evaluate(geometry, displacement.data(), nullptr, true);
+  double largest_error = 0.0;
+  for (int q = 0; q < geometry.points; ++q) {
+    const PointResponse& point = result.points[q];
+    for (int m = 0; m < kVoigt; ++m)
+      for (int n = 0; n < kVoigt; ++n)
+        EXPECT_NEAR(point.elastic_tangent[m * kVoigt + n], point.elastic_tangent[n * kVoigt + m],
+                    1e-10 * std::abs(point.elastic_tangent[0]));
+    const CondensationPoint condensed(point, geometry.gradient_at(q), 10, geometry.weight[q]);
+    const auto strain = green_strain_variation(point.deformation_gradient, geometry.gradient_at(q), 10, u.data());
+    const auto tangent_stress = condensed.tangent_stress(u.data(), 10);
+    double scale = 0.0, error = 0.0;
+    for (int m = 0; m < kVoigt; ++m) {
+      double expected = 0.0;
+      for (int n = 0; n < kVoigt; ++n) expected += point.elastic_tangent[m * kVoigt + n] * strain[n];
+      scale = std::max(scale, std::abs(expected));
+      error = std::max(error, std::abs(tangent_stress[m] - expected));
+    }
+    largest_error = std::max(largest_error, error / scale);
+    std::vector<double> work(30, 0.0), expected_work(30, 0.0);
+    condensed.add_stress_transpose(s, 10, work.data());
+    add_green_strain_transpose(point.deformation_gradient, geometry.gradient_at(q), 10, s, geometry.weight[q],
+                               expected_work.data());
+    double work_scale = 0.0, work_error = 0.0;
+    for (int c = 0; c < 30; ++c) {
+      work_scale = std::max(work_scale, std::abs(expected_work[c]));
+      work_error = std::max(work_error, std::abs(work[c] - expected_work[c]));
+    }
+    EXPECT_LT(work_error / work_scale, 1e-6) << "point " << q;
+    EXPECT_GT(work_error / work_scale, 1e-12) << "point " << q;  // it really is single precision
+  }
+  std::printf("condensation point: D0 B u relative error %.2e\n", largest_error);
+  EXPECT_LT(largest_error, 1e-6);
+  EXPECT_GT(largest_error, 1e-12);
+}
+
 }  // namespace
 }  // namespace needlefem::elements

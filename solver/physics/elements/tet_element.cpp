@@ -1,6 +1,7 @@
 // Equations and sources: tet_element.hpp.
 #include "physics/elements/tet_element.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -105,30 +106,26 @@ void green_strain_operator(const std::array<double, 9>& F, const double* gradien
   }
 }
 
-void add_green_strain_transpose(const std::array<double, 9>& F, const double* gradient, int nodes,
-                                const std::array<double, kVoigt>& s, double w, double* out) {
-  const double S[9] = {s[0], s[5], s[4], s[5], s[1], s[3], s[4], s[3], s[2]};
-  double FS[9];
-  for (int i = 0; i < 3; ++i)
-    for (int J = 0; J < 3; ++J) FS[3 * i + J] = F[3 * i] * S[J] + F[3 * i + 1] * S[3 + J] + F[3 * i + 2] * S[6 + J];
-  for (int a = 0; a < nodes; ++a) {
-    const double* G = gradient + 3 * a;
-    for (int i = 0; i < 3; ++i) out[3 * a + i] += w * (FS[3 * i] * G[0] + FS[3 * i + 1] * G[1] + FS[3 * i + 2] * G[2]);
-  }
+CondensationPoint::CondensationPoint(const PointResponse& point, const double* point_gradient, int nodes,
+                                     double point_weight)
+    : weight(static_cast<float>(point_weight)) {
+  std::copy(point.deformation_gradient.begin(), point.deformation_gradient.end(), deformation_gradient.begin());
+  for (int m = 0, k = 0; m < kVoigt; ++m)
+    for (int n = m; n < kVoigt; ++n) elastic_tangent[k++] = static_cast<float>(point.elastic_tangent[m * kVoigt + n]);
+  std::copy(point_gradient, point_gradient + 3 * nodes, gradient.begin());
 }
 
-std::array<double, kVoigt> green_strain_variation(const std::array<double, 9>& F, const double* gradient, int nodes,
-                                                  const double* u) {
-  double H[9] = {};
-  for (int a = 0; a < nodes; ++a) {
-    const double* G = gradient + 3 * a;
-    for (int i = 0; i < 3; ++i)
-      for (int J = 0; J < 3; ++J) H[3 * i + J] += u[3 * a + i] * G[J];
+std::array<double, kVoigt> CondensationPoint::tangent_stress(const double* u, int nodes) const {
+  const auto strain = green_strain_variation(deformation_gradient, gradient.data(), nodes, u);
+  std::array<double, kVoigt> stress{};
+  for (int m = 0, k = 0; m < kVoigt; ++m) {
+    stress[m] += elastic_tangent[k++] * strain[m];
+    for (int n = m + 1; n < kVoigt; ++n, ++k) {
+      stress[m] += elastic_tangent[k] * strain[n];
+      stress[n] += elastic_tangent[k] * strain[m];
+    }
   }
-  double A[9];  // Fᵀ H
-  for (int I = 0; I < 3; ++I)
-    for (int J = 0; J < 3; ++J) A[3 * I + J] = F[I] * H[J] + F[3 + I] * H[3 + J] + F[6 + I] * H[6 + J];
-  return {A[0], A[4], A[8], A[5] + A[7], A[2] + A[6], A[1] + A[3]};
+  return stress;
 }
 
 TetElementKernel::TetElementKernel(const material::Material& material, Formulation formulation)

@@ -123,12 +123,58 @@ class TetElementKernel {
 // B_q of the header comment (6 x 3n, row-major) at deformation gradient F and gradients G.
 void green_strain_operator(const std::array<double, 9>& F, const double* gradient, int nodes, double* B);
 // The two products with B_q that residuals and condensation need, without forming B_q (the
-// hot loops of a Newton-Krylov solve call them for every point of every element):
+// hot loops of a Newton-Krylov solve call them for every point of every element); F and the
+// gradients in double, or in float for the condensation (CondensationPoint), sums in double:
 //   out += w B_qᵀ s,  i.e. out_a += w F S G_a  (S the symmetric tensor of the Voigt stress s);
-void add_green_strain_transpose(const std::array<double, 9>& F, const double* gradient, int nodes,
-                                const std::array<double, kVoigt>& s, double w, double* out);
+template <class Real>
+void add_green_strain_transpose(const std::array<Real, 9>& F, const Real* gradient, int nodes,
+                                const std::array<double, kVoigt>& s, double w, double* out) {
+  const double S[9] = {s[0], s[5], s[4], s[5], s[1], s[3], s[4], s[3], s[2]};
+  double FS[9];
+  for (int i = 0; i < 3; ++i)
+    for (int J = 0; J < 3; ++J)
+      FS[3 * i + J] = w * (F[3 * i] * S[J] + F[3 * i + 1] * S[3 + J] + F[3 * i + 2] * S[6 + J]);
+  for (int a = 0; a < nodes; ++a) {
+    const Real* G = gradient + 3 * a;
+    for (int i = 0; i < 3; ++i) out[3 * a + i] += FS[3 * i] * G[0] + FS[3 * i + 1] * G[1] + FS[3 * i + 2] * G[2];
+  }
+}
+
 //   B_q u = δE_v = Voigt of sym(Fᵀ H), H = Σ_a u_a ⊗ G_a (engineering shear).
-std::array<double, kVoigt> green_strain_variation(const std::array<double, 9>& F, const double* gradient, int nodes,
-                                                  const double* u);
+template <class Real>
+std::array<double, kVoigt> green_strain_variation(const std::array<Real, 9>& F, const Real* gradient, int nodes,
+                                                  const double* u) {
+  double H[9] = {};
+  for (int a = 0; a < nodes; ++a) {
+    const Real* G = gradient + 3 * a;
+    for (int i = 0; i < 3; ++i)
+      for (int J = 0; J < 3; ++J) H[3 * i + J] += u[3 * a + i] * G[J];
+  }
+  double A[9];  // Fᵀ H
+  for (int I = 0; I < 3; ++I)
+    for (int J = 0; J < 3; ++J) A[3 * I + J] = F[I] * H[J] + F[3 + I] * H[3 + J] + F[6 + I] * H[6 + J];
+  return {A[0], A[4], A[8], A[5] + A[7], A[2] + A[6], A[1] + A[3]};
+}
+
+// What the viscous condensation of a Newton solve needs at one quadrature point, in single
+// precision: the condensation is part of the preconditioner of IDA's GMRES (or of modified
+// Newton's inexact iteration), and it is memory-bound, so that these 244 bytes per point,
+// against 648 in double (PointResponse and the element's gradients), take less time to read.
+// D⁰ is stored as its upper triangle: it is symmetric (the second derivative of W_iso in E).
+struct CondensationPoint {
+  std::array<float, 9> deformation_gradient{};
+  std::array<float, kVoigt*(kVoigt + 1) / 2> elastic_tangent{};  // D⁰ by rows, upper triangle
+  std::array<float, kMaxElementDofs> gradient{};                 // G_a, a = 1..n
+  float weight = 0.0f;                                           // w_q
+
+  CondensationPoint() = default;
+  CondensationPoint(const PointResponse& point, const double* gradient, int nodes, double weight);
+  // w B_qᵀ s added to out (3n).
+  void add_stress_transpose(const std::array<double, kVoigt>& s, int nodes, double* out) const {
+    add_green_strain_transpose(deformation_gradient, gradient.data(), nodes, s, weight, out);
+  }
+  // D⁰ B_q u.
+  std::array<double, kVoigt> tangent_stress(const double* u, int nodes) const;
+};
 
 }  // namespace needlefem::elements

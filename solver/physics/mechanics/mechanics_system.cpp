@@ -306,10 +306,13 @@ DaeStatus MechanicsSystem::setup_jacobian(double t, Vec y, Vec ydot, double cj) 
               }
           }
 #pragma omp for schedule(static)
-          for (std::size_t e = 0; e < count; ++e)
+          for (std::size_t e = 0; e < count; ++e) {
+            const elements::ElementGeometry& geometry = geometry_[first + e];
             if (terms && !inverted)
-              std::copy_n(batch[e].points.begin(), geometry_[first + e].points,
-                          condensation_.begin() + static_cast<std::ptrdiff_t>((first + e) * geometry_[first + e].points));
+              for (int p = 0; p < geometry.points; ++p)
+                condensation_[(first + e) * geometry.points + p] =
+                    elements::CondensationPoint(batch[e].points[p], geometry.gradient_at(p), n, geometry.weight[p]);
+          }
         }
       }
       check(MatSeqAIJRestoreArray(jacobian_, &values), "MatSeqAIJRestoreArray");
@@ -364,9 +367,7 @@ DaeStatus MechanicsSystem::solve_jacobian(Vec b, Vec x) {
           const double* b_q = in.data() + viscous_offset(k) + static_cast<PetscInt>(p) * terms * elements::kVoigt;
           for (int i = 0; i < terms; ++i)
             for (int m = 0; m < elements::kVoigt; ++m) source[m] += relaxation[i] * b_q[i * elements::kVoigt + m];
-          elements::add_green_strain_transpose(condensation_[k * geometry_[k].points + p].deformation_gradient,
-                                               geometry_[k].gradient_at(p), n, source, geometry_[k].weight[p],
-                                               force.data());
+          condensation_[k * geometry_[k].points + p].add_stress_transpose(source, n, force.data());
         }
         const int* nodes = mesh_.tet(dofs_.tissue_tets[k]);
         for (int a = 0; a < n; ++a)
@@ -392,13 +393,7 @@ DaeStatus MechanicsSystem::solve_jacobian(Vec b, Vec x) {
       std::array<double, 3 * 10> u_e{};
       gather_displacement(x_u.data(), k, u_e.data());
       for (int p = 0; p < geometry_[k].points; ++p) {
-        const elements::PointResponse& point = condensation_[k * geometry_[k].points + p];
-        // D⁰ B x_u
-        const auto strain =
-            elements::green_strain_variation(point.deformation_gradient, geometry_[k].gradient_at(p), n, u_e.data());
-        std::array<double, elements::kVoigt> stress{};
-        for (int m = 0; m < elements::kVoigt; ++m)
-          for (int l = 0; l < elements::kVoigt; ++l) stress[m] += point.elastic_tangent[m * elements::kVoigt + l] * strain[l];
+        const auto stress = condensation_[k * geometry_[k].points + p].tangent_stress(u_e.data(), n);  // D⁰ B x_u
         const PetscInt offset = viscous_offset(k) + static_cast<PetscInt>(p) * terms * elements::kVoigt;
         for (int i = 0; i < terms; ++i)
           for (int m = 0; m < elements::kVoigt; ++m) {
