@@ -336,13 +336,17 @@ bool SinglePrecisionFactor::factor_top(std::vector<int>& head, std::vector<Works
         map_rows(j, map);
         take_updates(j, head, updates);
       }
-      // The thread's share: j's columns k1+c_begin..k1+c_end-1, where column c costs height - c (the
-      // entries of j's block it updates), so that each share costs about the same.
+      // The thread's share: j's columns k1+c_begin..k1+c_end-1, where column c costs the entries of
+      // j's panels it updates (Cholesky: height - c; LU: height in L's panel and height - columns in
+      // Uᵀ's), so that each share costs about the same.
+      const auto column_cost = [&](int c) { return lu_ ? 2.0 * height - columns : static_cast<double>(height - c); };
       const auto boundary = [&](int part) {
-        const double target = (static_cast<double>(columns) * height - 0.5 * columns * columns) * part / threads;
+        double total = 0.0;
+        for (int c = 0; c < columns; ++c) total += column_cost(c);
+        const double target = total * part / threads;
         double cost = 0.0;
         int c = 0;
-        while (c < columns && cost + (height - c) <= target) cost += height - c++;
+        while (c < columns && cost + column_cost(c) <= target) cost += column_cost(c++);
         return part == threads ? columns : c;
       };
       const int k1 = super_[j], c_begin = boundary(t), c_end = boundary(t + 1);
@@ -355,7 +359,11 @@ bool SinglePrecisionFactor::factor_top(std::vector<int>& head, std::vector<Works
       }
 #pragma omp barrier
 #pragma omp single
-      done = factor_diagonal(j);
+      {
+        // Its dense factorisation is one LAPACK call: BLAS gets the cores while the team waits.
+        const BlasThreads cores(threads);
+        done = factor_diagonal(j);
+      }
       if (!done) break;
       const int below = height - columns;
       solve_below(j, below * t / threads, below * (t + 1) / threads);
