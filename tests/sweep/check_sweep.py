@@ -113,6 +113,13 @@ def resume(args):
     out = pathlib.Path(args.out)
     shutil.rmtree(out, ignore_errors=True)
     expected = [f"element_mm={e}__ramp_s={r}" for e in ("0.5", "1") for r in ("0.015", "1")]
+    listed = subprocess.run([args.exe, "sweep", str(args.sweep), "--out", str(out), "--list"], capture_output=True,
+                            text=True)
+    order = [line.split("to run: ")[1].split(" ")[0] for line in listed.stdout.splitlines() + listed.stderr.splitlines()
+             if "to run: " in line]
+    check(sorted(order) == sorted(expected) and all("element_mm=0.5" in name for name in order[:2]),
+          f"the longest runs (finest mesh) are started first: {order}")
+    shutil.rmtree(out, ignore_errors=True)
     start = time.monotonic()
     first = sweep(args.exe, args.sweep, out, jobs=2, start_new_session=True)
     killed = False
