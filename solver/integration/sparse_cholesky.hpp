@@ -62,6 +62,7 @@ class SparseCholesky {
   // x = J⁻¹ b in the sense above. b and x are sequential vectors of A's size.
   void solve(Vec b, Vec x);
 
+  bool single_precision() const { return precision_ == Precision::single_precision; }
   long factorizations() const { return factorizations_; }  // LU ones included
   long lu_factorizations() const { return lu_factorizations_; }
   // Precision::single_precision: subtrees of the elimination tree factored concurrently by

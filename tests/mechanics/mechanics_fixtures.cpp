@@ -31,8 +31,8 @@ SceneModel meshed(const Case& input) {
 // advance() is a full Newton iteration on the system's solves, so they must be exact: the
 // modified-Newton setting (the default Krylov one makes them single-precision preconditioner
 // solves, sparse_cholesky.hpp).
-Problem::Problem(const std::string& toml)
-    : input(Case::parse(toml, "test", {"integration.newton=modified"})),
+Problem::Problem(const std::string& toml, const std::vector<std::string>& overrides)
+    : input(Case::parse(toml, "test", overrides)),
       scene(meshed(input)),
       system(MechanicsSystem::from_case(input, scene.mesh)) {
   VecCreateSeq(PETSC_COMM_SELF, system->local_size(), &y);
@@ -69,6 +69,7 @@ bool Problem::advance(double t0, double t1, int steps) {
       // Newton converges quadratically to a round-off floor of ~1e-11 at K/mu = 1e6.
       converged = step_norm <= 1e-10 * state_norm;
     }
+    if (converged) system->accept_step(t, y, ydot);  // as IDA does after each step
   }
   if (converged) {
     VecWAXPY(ydot, -1.0, y_old, y);

@@ -4,6 +4,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <petscvec.h>
 
@@ -20,7 +21,9 @@ struct Problem {
   std::unique_ptr<MechanicsSystem> system;
   Vec y = nullptr, ydot = nullptr;
 
-  explicit Problem(const std::string& toml);
+  // `overrides` as on the command line (--set); the default makes Newton's solves exact.
+  explicit Problem(const std::string& toml,
+                   const std::vector<std::string>& overrides = {"integration.newton=modified"});
   ~Problem();
   Problem(const Problem&) = delete;
   Problem& operator=(const Problem&) = delete;

@@ -80,6 +80,24 @@ double taylor_slope(const std::string& formulation, int order) {
   return slope_sum / count;
 }
 
+// Where the factor only preconditions (integration.newton = "krylov", the default) it is single
+// precision, until IDA keeps failing: the third setup without an accepted step between goes to
+// MUMPS's double-precision LU, and the next accepted step brings the single-precision one back.
+TEST(MechanicsJacobian, SinglePrecisionFactorGivesWayToDoubleWhenStepsKeepFailing) {
+  Problem problem(block_case("", "[1.2, 0, 0, 0, 1, 0, 0, 0, 1]", "preset = \"miller-brain\"\n", 0.5, 2, "mixed"),
+                  {"integration.newton=krylov"});
+  MechanicsSystem& system = *problem.system;
+  const double t = 1e-3, cj = 1e3;
+  for (int setup = 1; setup <= 4; ++setup)
+    ASSERT_EQ(system.setup_jacobian(t, problem.y, problem.ydot, cj), DaeStatus::ok);
+  EXPECT_EQ(system.factorisations().cholesky, 2);
+  EXPECT_EQ(system.factorisations().ksp, 2);
+  system.accept_step(t, problem.y, problem.ydot);
+  ASSERT_EQ(system.setup_jacobian(t, problem.y, problem.ydot, cj), DaeStatus::ok);
+  EXPECT_EQ(system.factorisations().cholesky, 3);
+  EXPECT_EQ(system.factorisations().ksp, 2);
+}
+
 TEST(MechanicsJacobian, TaylorSlopeIsTwoWithViscousTermsMixedTet10) {
   const double slope = taylor_slope("mixed", 2);
   std::printf("Taylor slope, mixed TET10 with Prony state: %.4f\n", slope);

@@ -252,6 +252,7 @@ DaeStatus MechanicsSystem::residual(double t, Vec y, Vec ydot, Vec F) {
 }
 
 void MechanicsSystem::accept_step(double t, Vec y, Vec ydot) {
+  setups_since_accepted_step_ = 0;
   if (surface_loads_.empty()) return;
   ReadArray state(y), rate(ydot);
   for (const auto& load : surface_loads_) load->accept_step(t, state.data(), rate.data(), dofs_);
@@ -334,7 +335,9 @@ DaeStatus MechanicsSystem::setup_jacobian(double t, Vec y, Vec ydot, double cj) 
           "MatZeroRows");
     // A symmetric part found indefinite (sliding friction) usually stays so for the next
     // setups: skip Cholesky for a few of them rather than pay a failed attempt each time.
-    const bool try_cholesky = cholesky_ && cholesky_skips_left_ == 0;
+    const bool struggling = ++setups_since_accepted_step_ > kSinglePrecisionSetupsWithoutStep;
+    const bool try_cholesky =
+        cholesky_ && cholesky_skips_left_ == 0 && !(struggling && cholesky_->single_precision());
     if (cholesky_skips_left_ > 0) --cholesky_skips_left_;
     cholesky_factored_ = try_cholesky && cholesky_->factor(jacobian_);
     if (try_cholesky && !cholesky_factored_) cholesky_skips_left_ = kCholeskySkipsAfterIndefinite;
