@@ -160,12 +160,14 @@ bool SparseCholesky::factor(Mat A) {
   {
     MatrixValues values(A);
     const double* v = values.data();
-    double largest = 0.0, skew = 0.0;
-    for (std::size_t m = 0; m < entry_.size(); ++m) {
-      largest = std::max({largest, std::abs(v[entry_[m]]), std::abs(v[mirror_[m]])});
-      skew = std::max(skew, std::abs(v[entry_[m]] - v[mirror_[m]]));
+    if (precision_ == Precision::single_precision) {  // only then is an unsymmetric J_ff factored by LU
+      double largest = 0.0, skew = 0.0;
+      for (std::size_t m = 0; m < entry_.size(); ++m) {
+        largest = std::max({largest, std::abs(v[entry_[m]]), std::abs(v[mirror_[m]])});
+        skew = std::max(skew, std::abs(v[entry_[m]] - v[mirror_[m]]));
+      }
+      unsymmetric = skew > kSymmetryTolerance * largest;
     }
-    unsymmetric = precision_ == Precision::single_precision && skew > kSymmetryTolerance * largest;
     double* x = static_cast<double*>(lower_->x);
     if (unsymmetric) {
       // lower_ holds (J_ji, J_ij) at row j >= column i, J_ij being entry_'s.
