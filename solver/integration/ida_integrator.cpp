@@ -1,5 +1,6 @@
 #include "integration/ida_integrator.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <exception>
 #include <stdexcept>
@@ -21,6 +22,29 @@ namespace {
 
 Vec petsc_vector(N_Vector v) { return N_VGetVector_Petsc(v); }
 
+// GMRES's iteration limit (IdaOptions::krylov_stale_iterations): the whole basis with a Newton
+// matrix factored during the current step, fewer with one from an earlier step, so that a
+// stale preconditioner on which GMRES stagnates gives way to a fresh one early. SPGMR reads its
+// maxl field at every solve; values up to the basis it was created with are valid.
+struct GmresLimit {
+  SUNLinearSolverContent_SPGMR gmres = nullptr;  // null: not a Krylov Newton
+  int fresh = 0, stale = 0;
+  void matrix_refreshed() const {
+    if (gmres) gmres->maxl = fresh;
+  }
+  void step_accepted() const {
+    if (gmres) gmres->maxl = stale;
+  }
+};
+
+// IDA's user data, handed to every callback.
+struct IdaCallbacks {
+  DaeCallbackContext dae;
+  GmresLimit gmres_limit;
+};
+
+DaeCallbackContext& dae_context(void* user_data) { return static_cast<IdaCallbacks*>(user_data)->dae; }
+
 // A work vector shaped like another, destroyed with its scope.
 struct ScratchVec {
   explicit ScratchVec(Vec like) { petsc_check(VecDuplicate(like, &v), "VecDuplicate"); }
@@ -31,7 +55,7 @@ struct ScratchVec {
 };
 
 int residual_callback(realtype t, N_Vector y, N_Vector ydot, N_Vector F, void* user_data) {
-  auto& callbacks = *static_cast<DaeCallbackContext*>(user_data);
+  auto& callbacks = dae_context(user_data);
   try {
     return to_sundials_code(callbacks.system.residual(t, petsc_vector(y), petsc_vector(ydot), petsc_vector(F)));
   } catch (const std::exception& e) {
@@ -42,7 +66,7 @@ int residual_callback(realtype t, N_Vector y, N_Vector ydot, N_Vector F, void* u
 
 int jacobian_callback(realtype t, realtype cj, N_Vector y, N_Vector ydot, N_Vector, SUNMatrix, void* user_data,
                       N_Vector, N_Vector, N_Vector) {
-  auto& callbacks = *static_cast<DaeCallbackContext*>(user_data);
+  auto& callbacks = dae_context(user_data);
   try {
     return to_sundials_code(callbacks.system.setup_jacobian(t, petsc_vector(y), petsc_vector(ydot), cj));
   } catch (const std::exception& e) {
@@ -54,12 +78,13 @@ int jacobian_callback(realtype t, realtype cj, N_Vector y, N_Vector ydot, N_Vect
 // Newton-Krylov: the system's factored Newton matrix, refreshed only when IDA asks, is the
 // preconditioner of GMRES on IDA's difference-quotient products with the current Jacobian.
 int preconditioner_setup(realtype t, N_Vector y, N_Vector ydot, N_Vector, realtype cj, void* user_data) {
+  static_cast<IdaCallbacks*>(user_data)->gmres_limit.matrix_refreshed();
   return jacobian_callback(t, cj, y, ydot, nullptr, nullptr, user_data, nullptr, nullptr, nullptr);
 }
 
 int preconditioner_solve(realtype, N_Vector, N_Vector, N_Vector, N_Vector r, N_Vector z, realtype, realtype,
                          void* user_data) {
-  auto& callbacks = *static_cast<DaeCallbackContext*>(user_data);
+  auto& callbacks = dae_context(user_data);
   try {
     return to_sundials_code(callbacks.system.solve_jacobian(petsc_vector(r), petsc_vector(z)));
   } catch (const std::exception& e) {
@@ -85,7 +110,7 @@ void ida_check(int flag, const char* what) {
 }  // namespace
 
 struct IdaIntegrator::Impl {
-  Impl(DaeSystem& system, const IdaOptions& options, MPI_Comm comm) : options(options), comm(comm), callbacks{system, {}} {}
+  Impl(DaeSystem& system, const IdaOptions& options, MPI_Comm comm) : options(options), comm(comm), callbacks{{system, {}}, {}} {}
   ~Impl() {
     IDAFree(&ida);
     SUNLinSolFree(linear_solver);
@@ -102,12 +127,12 @@ struct IdaIntegrator::Impl {
   std::string with_failure_details(const std::string& reason) const {
     std::string text = reason;
     if (!last_ida_error.empty()) text += " (" + last_ida_error + ")";
-    if (!callbacks.last_exception.empty()) text += "; " + callbacks.last_exception;
+    if (!callbacks.dae.last_exception.empty()) text += "; " + callbacks.dae.last_exception;
     return text;
   }
   void clear_failure_details() {
     last_ida_error.clear();
-    callbacks.last_exception.clear();
+    callbacks.dae.last_exception.clear();
   }
 
   double tolerance_scale() const {
@@ -116,7 +141,7 @@ struct IdaIntegrator::Impl {
 
   IdaOptions options;
   MPI_Comm comm;
-  DaeCallbackContext callbacks;
+  IdaCallbacks callbacks;
   std::string last_ida_error;
   double time = 0.0;
   SUNContext context = nullptr;
@@ -178,9 +203,12 @@ IdaIntegrator::IdaIntegrator(DaeSystem& system, const IdaOptions& options, doubl
     ida_check(IDASetLinearSolver(m.ida, m.linear_solver, nullptr), "IDASetLinearSolver");
     ida_check(IDASetPreconditioner(m.ida, preconditioner_setup, preconditioner_solve), "IDASetPreconditioner");
     ida_check(IDASetEpsLin(m.ida, options.krylov_tolerance), "IDASetEpsLin");
+    m.callbacks.gmres_limit = {static_cast<SUNLinearSolverContent_SPGMR>(m.linear_solver->content),
+                               options.krylov_dimension,
+                               std::clamp(options.krylov_stale_iterations, 1, options.krylov_dimension)};
   } else {
     m.jacobian = make_jacobian_handle(m.context);
-    m.linear_solver = make_dae_linear_solver(m.context, m.callbacks);
+    m.linear_solver = make_dae_linear_solver(m.context, m.callbacks.dae);
     if (!m.jacobian || !m.linear_solver) throw std::runtime_error("creating the IDA linear solver failed");
     ida_check(IDASetLinearSolver(m.ida, m.linear_solver, m.jacobian), "IDASetLinearSolver");
     ida_check(IDASetJacFn(m.ida, jacobian_callback), "IDASetJacFn");
@@ -218,7 +246,7 @@ IdaIntegrator::InitialRates IdaIntegrator::make_initial_rates_consistent(double 
   Impl& m = *impl_;
   if (!(probe > 0.0) || !(probe_horizon > 0.0))
     throw std::invalid_argument("make_initial_rates_consistent: probe step and horizon must be positive");
-  DaeSystem& system = m.callbacks.system;
+  DaeSystem& system = m.callbacks.dae.system;
   const double t_probe = m.time + probe;
   const ScratchVec given_rates(m.y), y_probe(m.y), residual(m.y), update(m.y), weights(m.y);
   petsc_check(VecCopy(m.ydot, given_rates.v), "VecCopy");
@@ -297,7 +325,8 @@ void IdaIntegrator::advance_to(double t_out, const std::function<void(double)>& 
     ida_check(IDASetStopTime(m.ida, stop), "IDASetStopTime");
     flag = IDASolve(m.ida, stop, &t_reached, m.y_nv, m.ydot_nv, IDA_ONE_STEP);
     if (flag < 0) break;
-    m.callbacks.system.accept_step(t_reached, m.y, m.ydot);
+    m.callbacks.dae.system.accept_step(t_reached, m.y, m.ydot);
+    m.callbacks.gmres_limit.step_accepted();
     if (after_step) after_step(t_reached);
     if (flag == IDA_TSTOP_RETURN && stop == t_out) break;
     if (++steps >= m.options.max_steps_per_advance) {
@@ -331,7 +360,7 @@ IdaCounters IdaIntegrator::counters() const {
     ida_check(IDAGetNumLinIters(m.ida, &c.linear_iterations), "IDAGetNumLinIters");
   } else {
     ida_check(IDAGetNumJacEvals(m.ida, &c.jacobian_setups), "IDAGetNumJacEvals");
-    c.linear_iterations = m.callbacks.system.linear_iterations();
+    c.linear_iterations = m.callbacks.dae.system.linear_iterations();
   }
   ida_check(IDAGetNumLinSolvSetups(m.ida, &c.linear_solver_setups), "IDAGetNumLinSolvSetups");
   ida_check(IDAGetNumErrTestFails(m.ida, &c.error_test_failures), "IDAGetNumErrTestFails");

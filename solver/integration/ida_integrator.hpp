@@ -60,6 +60,13 @@ struct IdaOptions {
   // solve can stop Newton on a wrong iterate where the matrix is nearly singular (K/mu = 1e5:
   // a 4x wrong reaction with 0.25); hence 0.25 only in the study's case files (schema.cpp).
   double krylov_tolerance = 0.05;
+  // GMRES iterations allowed, per linear solve, with a Newton matrix factored in an earlier
+  // step (the whole krylov_dimension with one factored in the current step). At the limit IDA's
+  // Newton sees a failed linear solve and retries with a fresh matrix (a step cut only when the
+  // matrix was fresh). While the needle moves, a matrix from the previous step can leave GMRES
+  // stagnating at the full basis: tied 0.4 mm benchmark 320 GMRES iterations with no limit,
+  // 122 with 5, same maxima.
+  int krylov_stale_iterations = 20;
   // IDA refreshes the Newton matrix when cj = alpha/h has changed by more than this fraction
   // since the last setup (IDA's default 0.25). The tissue's matrix barely depends on cj (only
   // through the condensed viscous factor 1 - Σ g_i/(1 + cj τ_i), mechanics_system.hpp), so a

@@ -1,6 +1,8 @@
 // IdaIntegrator on closed-form DAEs: accuracy against the exact generalised Maxwell solid,
 // convergence order with fixed steps, must-hit output times, recoverable and fatal failures,
 // and the counters (factorisation reuse, one linear solve per Newton iteration).
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -266,6 +268,96 @@ TEST(IdaIntegrator, NewtonKrylovGivesTheSameAccuracyWithFewerFactorisations) {
       EXPECT_LT(c.jacobian_setups, modified_setups);
     }
   }
+}
+
+// y_i' = -λ_i(t) (y_i - ŷ_i(t)) + ŷ_i'(t), i < 24, with ŷ_i = 1 + sin(t + i) / 2 (the exact
+// solution from y_i(0) = ŷ_i(0)), λ_i = a_i (1 + c_i sin ωt), a_i from 10 to 1000 /s and c_i = ±0.8
+// alternating. Stiff modes let the steps grow until cj << λ_i; the Newton matrix diag(cj + λ_i)
+// then ages unevenly, and GMRES preconditioned by the matrix of an earlier step needs about one
+// iteration per distinct ratio of old to new entries.
+class UnevenlyAgingModes : public DaeSystem {
+ public:
+  static constexpr int kModes = 24;
+  static constexpr double kOmega = 3.0;  // rad/s
+  double rate(int i) const { return 10.0 * std::pow(100.0, i / (kModes - 1.0)); }
+  double swing(int i) const { return i % 2 ? -0.8 : 0.8; }
+  double lambda(int i, double t) const { return rate(i) * (1.0 + swing(i) * std::sin(kOmega * t)); }
+  double exact(int i, double t) const { return 1.0 + 0.5 * std::sin(t + i); }
+  double exact_rate(int i, double t) const { return 0.5 * std::cos(t + i); }
+  PetscInt local_size() const override { return kModes; }
+  void initial_state(double t0, Vec y, Vec ydot) override {
+    double *v = nullptr, *r = nullptr;
+    VecGetArray(y, &v);
+    VecGetArray(ydot, &r);
+    for (int i = 0; i < kModes; ++i) {
+      v[i] = exact(i, t0);
+      r[i] = exact_rate(i, t0);
+    }
+    VecRestoreArray(ydot, &r);
+    VecRestoreArray(y, &v);
+  }
+  void differential_mask(Vec id) override { VecSet(id, 1.0); }
+  DaeStatus residual(double t, Vec y, Vec ydot, Vec F) override {
+    const double *v = nullptr, *r = nullptr;
+    double* f = nullptr;
+    VecGetArrayRead(y, &v);
+    VecGetArrayRead(ydot, &r);
+    VecGetArray(F, &f);
+    for (int i = 0; i < kModes; ++i) f[i] = r[i] + lambda(i, t) * (v[i] - exact(i, t)) - exact_rate(i, t);
+    VecRestoreArray(F, &f);
+    VecRestoreArrayRead(ydot, &r);
+    VecRestoreArrayRead(y, &v);
+    return DaeStatus::ok;
+  }
+  DaeStatus setup_jacobian(double t, Vec, Vec, double cj) override {
+    for (int i = 0; i < kModes; ++i) diagonal_[i] = cj + lambda(i, t);
+    return DaeStatus::ok;
+  }
+  DaeStatus solve_jacobian(Vec b, Vec x) override {
+    const double* in = nullptr;
+    double* out = nullptr;
+    VecGetArrayRead(b, &in);
+    VecGetArray(x, &out);
+    for (int i = 0; i < kModes; ++i) out[i] = in[i] / diagonal_[i];
+    VecRestoreArray(x, &out);
+    VecRestoreArrayRead(b, &in);
+    return DaeStatus::ok;
+  }
+
+ private:
+  std::array<double, kModes> diagonal_{};
+};
+
+// IdaOptions::krylov_stale_iterations: with a limit below what a stale matrix needs, Newton
+// refreshes the matrix instead of iterating GMRES on to its full basis; both runs are accurate.
+TEST(IdaIntegrator, GmresOnAStaleMatrixStopsAtItsLimitAndNewtonRefreshesTheMatrix) {
+  const double rtol = 1e-6;
+  IdaCounters unlimited, limited;
+  for (int limit : {UnevenlyAgingModes::kModes, 3}) {
+    UnevenlyAgingModes system;
+    IdaOptions options = with_tolerance(rtol);
+    options.newton = NewtonMethod::krylov;
+    options.krylov_dimension = UnevenlyAgingModes::kModes;
+    options.krylov_stale_iterations = limit;
+    options.newton_matrix_cj_change = 0.9;
+    IdaIntegrator ida(system, options, 0.0, PETSC_COMM_SELF);
+    double error = 0.0;
+    for (double t = 0.1; t < 2.05; t += 0.1) {
+      ida.advance_to(t);
+      const double* y = nullptr;
+      VecGetArrayRead(ida.state(), &y);
+      for (int i = 0; i < UnevenlyAgingModes::kModes; ++i)
+        error = std::max(error, std::abs(y[i] - system.exact(i, t)));
+      VecRestoreArrayRead(ida.state(), &y);
+    }
+    const auto c = ida.counters();
+    std::printf("stale limit %d: error %.3e, steps %ld, Newton %ld, setups %ld, GMRES iterations %ld\n", limit, error,
+                c.steps, c.newton_iterations, c.jacobian_setups, c.linear_iterations);
+    EXPECT_LT(error, 100.0 * rtol);
+    (limit == 3 ? limited : unlimited) = c;
+  }
+  EXPECT_GT(limited.jacobian_setups, unlimited.jacobian_setups);
+  EXPECT_LT(limited.linear_iterations, unlimited.linear_iterations);
 }
 
 // y' = (1 - y) / tau, y(0) = 0 (a saturating variable such as a damage fraction that cannot

@@ -84,62 +84,52 @@ MechanicsSystem::MechanicsSystem(const TetMesh& mesh, const material::Material& 
   prescribed_.assign(dofs_.dof_count, 0);
   for (const auto& d : conditions_.dofs) prescribed_[d.dof] = 1;
 
-  // Block (node) sparsity: nodes sharing a tissue tet.
+  // Block (node) sparsity: nodes sharing a tissue tet, sorted per block row.
   const PetscInt block_rows = dofs_.dof_count / 3;
   std::vector<std::vector<PetscInt>> neighbours(block_rows);
   for (std::size_t e : dofs_.tissue_tets)
     for (int a = 0; a < n; ++a)
       for (int b = 0; b < n; ++b)
         neighbours[dofs_.node_dof[mesh.tet(e)[a]] / 3].push_back(dofs_.node_dof[mesh.tet(e)[b]] / 3);
-  std::vector<PetscInt> blocks_per_row(block_rows);
-  for (PetscInt row = 0; row < block_rows; ++row) {
-    auto& list = neighbours[row];
+  for (auto& list : neighbours) {
     std::sort(list.begin(), list.end());
-    blocks_per_row[row] = std::unique(list.begin(), list.end()) - list.begin();
+    list.erase(std::unique(list.begin(), list.end()), list.end());
   }
+  // The pattern is set now, once, as CSR with zero values: every block row's three rows hold
+  // the three columns of each neighbour block. Prescribed rows become identity rows without
+  // changing it, so the symbolic factorisation is reused from one setup to the next, and
+  // setups add element matrices straight into the CSR values from the OpenMP threads
+  // (MatSetValues is not thread-safe; inserting by one thread took 0.25 s per setup on the
+  // 0.4 mm brain tip, and inserting the zero pattern through it 0.25 s at construction).
+  std::vector<PetscInt> row_start(static_cast<std::size_t>(dofs_.dof_count) + 1, 0), columns;
+  for (PetscInt block = 0; block < block_rows; ++block)
+    for (int i = 0; i < 3; ++i)
+      row_start[3 * block + i + 1] = row_start[3 * block + i] + 3 * static_cast<PetscInt>(neighbours[block].size());
+  columns.reserve(static_cast<std::size_t>(row_start.back()));
+  for (PetscInt block = 0; block < block_rows; ++block)
+    for (int i = 0; i < 3; ++i)
+      for (const PetscInt column_block : neighbours[block])
+        for (int j = 0; j < 3; ++j) columns.push_back(3 * column_block + j);
   check(MatCreate(PETSC_COMM_SELF, &jacobian_), "MatCreate");
   check(MatSetSizes(jacobian_, dofs_.dof_count, dofs_.dof_count, dofs_.dof_count, dofs_.dof_count), "MatSetSizes");
-  check(MatSetType(jacobian_, MATAIJ), "MatSetType");
+  check(MatSetType(jacobian_, MATSEQAIJ), "MatSetType");
   check(MatSetBlockSize(jacobian_, 3), "MatSetBlockSize");
-  check(MatXAIJSetPreallocation(jacobian_, 3, blocks_per_row.data(), nullptr, nullptr, nullptr),
-        "MatXAIJSetPreallocation");
-  // Prescribed rows become identity rows without changing the pattern, so the symbolic
-  // factorisation is reused from one setup to the next.
+  check(MatSeqAIJSetPreallocationCSR(jacobian_, row_start.data(), columns.data(), nullptr),
+        "MatSeqAIJSetPreallocationCSR");
   check(MatSetOption(jacobian_, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE), "MatSetOption");
-  // The pattern is set now, once: every element's blocks, with zeros. Setups then add element
-  // matrices straight into the CSR values from the OpenMP threads (MatSetValues is not
-  // thread-safe, and inserting by one thread took 0.25 s per setup on the 0.4 mm brain tip).
-  const std::vector<double> zeros(static_cast<std::size_t>(9 * n * n), 0.0);
-  std::vector<PetscInt> block_indices(n);
-  for (std::size_t e : dofs_.tissue_tets) {
-    for (int a = 0; a < n; ++a) block_indices[a] = dofs_.node_dof[mesh.tet(e)[a]] / 3;
-    check(MatSetValuesBlocked(jacobian_, n, block_indices.data(), n, block_indices.data(), zeros.data(), ADD_VALUES),
-          "MatSetValuesBlocked");
-  }
-  check(MatAssemblyBegin(jacobian_, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
-  check(MatAssemblyEnd(jacobian_, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
-  {
-    PetscInt rows = 0;
-    const PetscInt *row_start = nullptr, *columns = nullptr;
-    PetscBool done = PETSC_FALSE;
-    check(MatGetRowIJ(jacobian_, 0, PETSC_FALSE, PETSC_FALSE, &rows, &row_start, &columns, &done), "MatGetRowIJ");
-    // Position of entry (3 r_a + i, 3 c_b) in the values, for blocks (a, b) and rows i; the
-    // three columns of a block follow it.
-    value_positions_.resize(dofs_.tissue_tets.size() * static_cast<std::size_t>(3 * n * n));
-    for (std::size_t k = 0; k < dofs_.tissue_tets.size(); ++k) {
-      const int* nodes = mesh.tet(dofs_.tissue_tets[k]);
-      for (int a = 0; a < n; ++a)
-        for (int i = 0; i < 3; ++i) {
-          const PetscInt row = dofs_.node_dof[nodes[a]] + i;
-          for (int b = 0; b < n; ++b) {
-            const PetscInt column = dofs_.node_dof[nodes[b]];
-            const PetscInt* found = std::lower_bound(columns + row_start[row], columns + row_start[row + 1], column);
-            value_positions_[(k * n + a) * 3 * n + 3 * b + i] = found - columns;
-          }
-        }
+  // Position of entry (3 r_a + i, 3 c_b) in the values, for blocks (a, b) and rows i; the
+  // three columns of a block follow it.
+  value_positions_.resize(dofs_.tissue_tets.size() * static_cast<std::size_t>(3 * n * n));
+  for (std::size_t k = 0; k < dofs_.tissue_tets.size(); ++k) {
+    const int* nodes = mesh.tet(dofs_.tissue_tets[k]);
+    for (int a = 0; a < n; ++a) {
+      const PetscInt block = dofs_.node_dof[nodes[a]] / 3;
+      const auto& list = neighbours[block];
+      for (int b = 0; b < n; ++b) {
+        const PetscInt offset = 3 * (std::lower_bound(list.begin(), list.end(), dofs_.node_dof[nodes[b]] / 3) - list.begin());
+        for (int i = 0; i < 3; ++i) value_positions_[(k * n + a) * 3 * n + 3 * b + i] = row_start[3 * block + i] + offset;
+      }
     }
-    check(MatRestoreRowIJ(jacobian_, 0, PETSC_FALSE, PETSC_FALSE, &rows, &row_start, &columns, &done),
-          "MatRestoreRowIJ");
   }
 
   // Near-incompressible tissue (K/mu up to 1e6) delays many pivots in MUMPS; its default 20 %
