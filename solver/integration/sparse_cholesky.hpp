@@ -1,7 +1,8 @@
 // Direct solves with a Newton matrix through a sparse Cholesky factorisation of its symmetric
 // part on the free unknowns (CHOLMOD, SuiteSparse: Chen, Davis, Hager & Rajamanickam, ACM TOMS
-// 35(3):22, 2008; supernodal, BLAS-3, fill-reducing ordering chosen by CHOLMOD among AMD and
-// METIS nested dissection).
+// 35(3):22, 2008; supernodal, BLAS-3). Fill-reducing ordering: METIS nested dissection of the
+// node graph when the matrix has a block size (the unknowns of a node), CHOLMOD's choice among
+// AMD and METIS on the unknowns otherwise.
 //
 // J is a PETSc SeqAIJ matrix with a symmetric nonzero pattern whose prescribed (Dirichlet) rows
 // may already be identity rows. With f the free and p the prescribed unknowns, solve() returns
