@@ -205,7 +205,9 @@ IdaIntegrator::IdaIntegrator(DaeSystem& system, const IdaOptions& options, doubl
     ida_check(IDASetEpsLin(m.ida, options.krylov_tolerance), "IDASetEpsLin");
     m.callbacks.gmres_limit = {static_cast<SUNLinearSolverContent_SPGMR>(m.linear_solver->content),
                                options.krylov_dimension,
-                               std::clamp(options.krylov_stale_iterations, 1, options.krylov_dimension)};
+                               options.krylov_stale_iterations > 0
+                                   ? std::min(options.krylov_stale_iterations, options.krylov_dimension)
+                                   : options.krylov_dimension};
   } else {
     m.jacobian = make_jacobian_handle(m.context);
     m.linear_solver = make_dae_linear_solver(m.context, m.callbacks.dae);

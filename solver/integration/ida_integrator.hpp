@@ -65,8 +65,8 @@ struct IdaOptions {
   // Newton sees a failed linear solve and retries with a fresh matrix (a step cut only when the
   // matrix was fresh). While the needle moves, a matrix from the previous step can leave GMRES
   // stagnating at the full basis: tied 0.4 mm benchmark 320 GMRES iterations with no limit,
-  // 122 with 5, same maxima.
-  int krylov_stale_iterations = 20;
+  // 122 with 5, same maxima. 0: no limit (the case files' default is 5, schema.cpp).
+  int krylov_stale_iterations = 0;
   // IDA refreshes the Newton matrix when cj = alpha/h has changed by more than this fraction
   // since the last setup (IDA's default 0.25). The tissue's matrix barely depends on cj (only
   // through the condensed viscous factor 1 - Σ g_i/(1 + cj τ_i), mechanics_system.hpp), so a

@@ -194,9 +194,10 @@ void SparseCholesky::analyse(Mat A) {
   petsc_check(MatGetBlockSize(A, &block), "MatGetBlockSize");
   if (block > 1) {
     std::vector<int> order = node_nested_dissection(structure, free_index_, block);
-    common_->nmethods = 1;
+    common_->nmethods = 1;  // this order only, not also CHOLMOD's own choices
     common_->method[0].ordering = CHOLMOD_GIVEN;
     factor_ = cholmod_analyze_p(lower_, order.data(), nullptr, 0, common_);
+    common_->nmethods = 0;  // CHOLMOD's default strategy for a later analysis without blocks
   } else {
     factor_ = cholmod_analyze(lower_, common_);
   }

@@ -199,7 +199,7 @@ bool MechanicsSystem::assemble_internal(const double* y, const double* ydot, dou
   std::vector<double> element_energy(energy ? geometry_.size() : 0);
   for_each_element_summed(geometry_.size(), f_u, displacement_dofs(), [&](std::size_t k, double* forces) {
     if (inverted.load(std::memory_order_relaxed)) return;
-    std::array<double, 3 * 10> u_e{};
+    std::array<double, elements::kMaxElementDofs> u_e{};
     gather_displacement(y, k, u_e.data());
     const double* q = terms ? y + viscous_offset(k) : nullptr;
     const elements::ElementResult element = kernel_.evaluate(geometry_[k], u_e.data(), q, false);
@@ -272,7 +272,7 @@ DaeStatus MechanicsSystem::setup_jacobian(double t, Vec y, Vec ydot, double cj) 
 #pragma omp for schedule(static)
           for (std::size_t e = 0; e < count; ++e) {
             const std::size_t k = first + e;
-            std::array<double, 3 * 10> u_e{};
+            std::array<double, elements::kMaxElementDofs> u_e{};
             gather_displacement(state.data(), k, u_e.data());
             const double* q = terms ? state.data() + viscous_offset(k) : nullptr;
             batch[e] = kernel_.evaluate(geometry_[k], u_e.data(), q, true, scale);
@@ -353,7 +353,7 @@ DaeStatus MechanicsSystem::solve_jacobian(Vec b, Vec x) {
       double* r = rhs.data();
       std::copy(in.data(), in.data() + nu, r);
       for_each_element_summed(terms ? geometry_.size() : 0, r, nu, [&](std::size_t k, double* sums) {
-        std::array<double, 3 * 10> force{};
+        std::array<double, elements::kMaxElementDofs> force{};
         for (int p = 0; p < geometry_[k].points; ++p) {
           // w Bᵀ Σ_i b_Qi / (cj + 1/τ_i).
           std::array<double, elements::kVoigt> source{};
@@ -383,7 +383,7 @@ DaeStatus MechanicsSystem::solve_jacobian(Vec b, Vec x) {
     const std::size_t elements = terms ? geometry_.size() : 0;
 #pragma omp parallel for schedule(static)
     for (std::size_t k = 0; k < elements; ++k) {
-      std::array<double, 3 * 10> u_e{};
+      std::array<double, elements::kMaxElementDofs> u_e{};
       gather_displacement(x_u.data(), k, u_e.data());
       for (int p = 0; p < geometry_[k].points; ++p) {
         const auto stress = condensation_[k * geometry_[k].points + p].tangent_stress(u_e.data(), n);  // D⁰ B x_u
