@@ -99,6 +99,11 @@ struct IdaCounters {
   long error_test_failures = 0;
   long newton_convergence_failures = 0;
   long linear_iterations = 0;    // Krylov iterations (IDA's GMRES, or the system's KSP); 0 for a direct solve
+  // Krylov Newton: steps whose Newton matrix from an earlier step failed GMRES, and steps that
+  // refused it without a try (ida_integrator.cpp, StaleMatrixPolicy); each refusal is also one
+  // of newton_convergence_failures.
+  long stale_matrix_failures = 0;
+  long stale_matrix_refusals = 0;
   double last_step = 0.0;        // s
   int last_order = 0;
 };

@@ -184,6 +184,8 @@ nlohmann::json summary_json(const Case& c, const material::Material* material, c
                  {"error_test_failures", record.counters.error_test_failures},
                  {"newton_convergence_failures", record.counters.newton_convergence_failures},
                  {"linear_iterations", record.counters.linear_iterations},
+                 {"stale_matrix_failures", record.counters.stale_matrix_failures},
+                 {"stale_matrix_refusals", record.counters.stale_matrix_refusals},
                  {"step_rejections", {{"inverted_element_residuals", record.rejections.inverted_residuals},
                                       {"inverted_element_jacobians", record.rejections.inverted_jacobians},
                                       {"failed_factorisations", record.rejections.failed_factorisations},

@@ -124,6 +124,22 @@ TEST(IdaIntegrator, ReturnsExactlyAtEachOutputTime) {
   EXPECT_THROW(ida.advance_to(1.0), std::invalid_argument);
 }
 
+// An output time that the next step reaches up to round-off is one step away: with steps capped
+// at 0.005 s and outputs every 0.01 s, each output takes exactly two steps (the halving that
+// keeps a landing step from being a sliver must not turn the second into two halves).
+TEST(IdaIntegrator, OutputTimesOneStepAwayTakeOneStep) {
+  MaxwellSolidSystem system;
+  IdaOptions options = with_tolerance(1e-4);
+  options.max_step = 0.005;
+  IdaIntegrator ida(system, options, 0.0, PETSC_COMM_SELF);
+  set_scaled_tolerances(ida, system.solid(), 1e-4);
+  ida.advance_to(1.0);
+  const long steps_before = ida.counters().steps;
+  for (int k = 1; k <= 100; ++k) ida.advance_to(1.0 + 0.01 * k);
+  EXPECT_EQ(ida.counters().steps - steps_before, 200);
+  EXPECT_NEAR(ida.counters().last_step, 0.005, 1e-12);
+}
+
 TEST(IdaIntegrator, CountersAreConsistentAndFactorisationsAreReused) {
   MaxwellSolidSystem system;
   IdaIntegrator ida(system, with_tolerance(1e-6), 0.0, PETSC_COMM_SELF);
@@ -278,10 +294,10 @@ TEST(IdaIntegrator, NewtonKrylovGivesTheSameAccuracyWithFewerFactorisations) {
 class UnevenlyAgingModes : public DaeSystem {
  public:
   static constexpr int kModes = 24;
-  static constexpr double kOmega = 3.0;  // rad/s
+  double omega = 3.0;  // rad/s
   double rate(int i) const { return 10.0 * std::pow(100.0, i / (kModes - 1.0)); }
   double swing(int i) const { return i % 2 ? -0.8 : 0.8; }
-  double lambda(int i, double t) const { return rate(i) * (1.0 + swing(i) * std::sin(kOmega * t)); }
+  double lambda(int i, double t) const { return rate(i) * (1.0 + swing(i) * std::sin(omega * t)); }
   double exact(int i, double t) const { return 1.0 + 0.5 * std::sin(t + i); }
   double exact_rate(int i, double t) const { return 0.5 * std::cos(t + i); }
   PetscInt local_size() const override { return kModes; }
@@ -328,6 +344,30 @@ class UnevenlyAgingModes : public DaeSystem {
   std::array<double, kModes> diagonal_{};
 };
 
+// Newton-Krylov options of the stale-matrix tests: GMRES's basis holds every mode, `stale_limit`
+// iterations on a matrix from an earlier step.
+IdaOptions aging_modes_options(double rtol, int stale_limit) {
+  IdaOptions options = with_tolerance(rtol);
+  options.newton = NewtonMethod::krylov;
+  options.krylov_dimension = UnevenlyAgingModes::kModes;
+  options.krylov_stale_iterations = stale_limit;
+  options.newton_matrix_cj_change = 0.9;
+  return options;
+}
+
+// Largest error of any mode at the output times 0.1, 0.2, ..., 2 s.
+double aging_modes_error(IdaIntegrator& ida, const UnevenlyAgingModes& system) {
+  double error = 0.0;
+  for (double t = 0.1; t < 2.05; t += 0.1) {
+    ida.advance_to(t);
+    const double* y = nullptr;
+    VecGetArrayRead(ida.state(), &y);
+    for (int i = 0; i < UnevenlyAgingModes::kModes; ++i) error = std::max(error, std::abs(y[i] - system.exact(i, t)));
+    VecRestoreArrayRead(ida.state(), &y);
+  }
+  return error;
+}
+
 // IdaOptions::krylov_stale_iterations: with a limit below what a stale matrix needs, Newton
 // refreshes the matrix instead of iterating GMRES on to its full basis; both runs are accurate.
 TEST(IdaIntegrator, GmresOnAStaleMatrixStopsAtItsLimitAndNewtonRefreshesTheMatrix) {
@@ -335,21 +375,8 @@ TEST(IdaIntegrator, GmresOnAStaleMatrixStopsAtItsLimitAndNewtonRefreshesTheMatri
   IdaCounters unlimited, limited;
   for (int limit : {UnevenlyAgingModes::kModes, 3}) {
     UnevenlyAgingModes system;
-    IdaOptions options = with_tolerance(rtol);
-    options.newton = NewtonMethod::krylov;
-    options.krylov_dimension = UnevenlyAgingModes::kModes;
-    options.krylov_stale_iterations = limit;
-    options.newton_matrix_cj_change = 0.9;
-    IdaIntegrator ida(system, options, 0.0, PETSC_COMM_SELF);
-    double error = 0.0;
-    for (double t = 0.1; t < 2.05; t += 0.1) {
-      ida.advance_to(t);
-      const double* y = nullptr;
-      VecGetArrayRead(ida.state(), &y);
-      for (int i = 0; i < UnevenlyAgingModes::kModes; ++i)
-        error = std::max(error, std::abs(y[i] - system.exact(i, t)));
-      VecRestoreArrayRead(ida.state(), &y);
-    }
+    IdaIntegrator ida(system, aging_modes_options(rtol, limit), 0.0, PETSC_COMM_SELF);
+    const double error = aging_modes_error(ida, system);
     const auto c = ida.counters();
     std::printf("stale limit %d: error %.3e, steps %ld, Newton %ld, setups %ld, GMRES iterations %ld\n", limit, error,
                 c.steps, c.newton_iterations, c.jacobian_setups, c.linear_iterations);
@@ -358,6 +385,27 @@ TEST(IdaIntegrator, GmresOnAStaleMatrixStopsAtItsLimitAndNewtonRefreshesTheMatri
   }
   EXPECT_GT(limited.jacobian_setups, unlimited.jacobian_setups);
   EXPECT_LT(limited.linear_iterations, unlimited.linear_iterations);
+}
+
+// A stale matrix that failed in two steps in a row is refused by the next steps (1, 2, then 3 of
+// them) before it is tried again. With one GMRES iteration allowed on a stale matrix, modes that
+// age within every step leave almost no stale matrix usable (ω = 30 rad/s): the steps then
+// refuse more stale matrices than they try and see fail (up to 3 refusals per failure), and the
+// solution stays as accurate.
+TEST(IdaIntegrator, AStaleMatrixThatKeepsFailingIsRefusedByTheNextSteps) {
+  const double rtol = 1e-6;
+  UnevenlyAgingModes system;
+  system.omega = 30.0;
+  IdaIntegrator ida(system, aging_modes_options(rtol, 1), 0.0, PETSC_COMM_SELF);
+  const double error = aging_modes_error(ida, system);
+  const auto c = ida.counters();
+  std::printf("error %.3e, steps %ld, Newton %ld, setups %ld, GMRES %ld, stale failures %ld, refusals %ld\n", error,
+              c.steps, c.newton_iterations, c.jacobian_setups, c.linear_iterations, c.stale_matrix_failures,
+              c.stale_matrix_refusals);
+  EXPECT_LT(error, 100.0 * rtol);
+  EXPECT_GT(c.stale_matrix_refusals, c.stale_matrix_failures);
+  EXPECT_GT(c.stale_matrix_refusals, c.steps / 3);
+  EXPECT_GE(c.newton_convergence_failures, c.stale_matrix_failures + c.stale_matrix_refusals);
 }
 
 // y' = (1 - y) / tau, y(0) = 0 (a saturating variable such as a damage fraction that cannot
