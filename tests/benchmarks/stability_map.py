@@ -119,7 +119,7 @@ for newton in ("krylov", "modified"):
         solver = record.get("solver") or {}
         row = {"newton": newton, "fixed_step_s": step, "status": record["status"], "cpu_s": record["cpu_s"],
                "time_reached_s": record.get("time_reached_s"), "steps": solver.get("steps"),
-               "newton_iterations": solver.get("newton_iterations"), "max_pressure_pa": record["max"].get("pressure_pa")}
+               "newton_iterations": solver.get("newton_iterations"), "max_pressure_pa": record.get("max", {}).get("pressure_pa")}
         if record["status"] == "completed" and adaptive["status"] == "completed":
             row["errors"] = relative_errors(record, adaptive)
             row["error_max"] = max(row["errors"].values())
