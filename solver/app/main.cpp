@@ -46,7 +46,7 @@ void add_case_command(CLI::App& app, const std::string& name, const std::string&
 // randomised (ASLR) the nodes it moves differ in their last digits from one process to the next
 // (up to 6e-6 mm on ~1200 nodes of the 0.4 mm brain tip), and frictional contact turns that into
 // other step sequences (the default case took 27-37 s) and maxima in the 4th digit. Without
-// randomisation, and with gmsh on a thread of its own (model/scene_model.cpp), a case run twice
+// randomisation, and with gmsh on a thread of its own (mesh/gmsh_session.hpp), a case run twice
 // repeats bit for bit. `replay`, which talks to devices over the network, keeps it; where the
 // kernel refuses (a seccomp profile), runs go on randomised. True when the process must restart.
 bool stop_address_randomisation(int argc, char** argv) {

@@ -166,8 +166,9 @@ int preconditioner_setup(realtype t, N_Vector y, N_Vector ydot, N_Vector, realty
 
 int preconditioner_solve(realtype, N_Vector, N_Vector, N_Vector, N_Vector r, N_Vector z, realtype, realtype,
                          void* user_data) {
-  auto& callbacks = dae_context(user_data);
-  if (static_cast<IdaCallbacks*>(user_data)->stale_matrix.refuse_matrix()) return 1;  // recoverable: Newton refreshes
+  auto& all = *static_cast<IdaCallbacks*>(user_data);
+  if (all.stale_matrix.refuse_matrix()) return 1;  // recoverable: Newton refreshes the matrix
+  auto& callbacks = all.dae;
   try {
     return to_sundials_code(callbacks.system.solve_jacobian(petsc_vector(r), petsc_vector(z)));
   } catch (const std::exception& e) {

@@ -1,6 +1,8 @@
 #include "mesh/gmsh_session.hpp"
 
+#include <exception>
 #include <stdexcept>
+#include <thread>
 
 #include <gmsh.h>
 #include <omp.h>
@@ -11,7 +13,8 @@ GmshSession::GmshSession(const std::string& model_name) : solver_threads_(omp_ge
   gmsh::initialize(0, nullptr, /*readConfigFiles=*/false);
   gmsh::option::setNumber("General.Terminal", 0);
   gmsh::option::setNumber("General.Verbosity", 1);
-  // One thread and a fixed seed: the same case gives the same mesh, node for node.
+  // One thread and a fixed seed: the same case gives the same mesh, node for node (with
+  // on_fresh_thread: see there).
   gmsh::option::setNumber("General.NumThreads", 1);
   gmsh::model::add(model_name);
 }
@@ -27,6 +30,19 @@ void GmshSession::guarded(const std::function<void()>& body) {
   } catch (const std::string& message) {
     throw std::runtime_error("gmsh: " + message);
   }
+}
+
+void GmshSession::on_fresh_thread(const std::function<void()>& body) {
+  std::exception_ptr failure;
+  std::thread mesher([&] {
+    try {
+      body();
+    } catch (...) {
+      failure = std::current_exception();
+    }
+  });
+  mesher.join();
+  if (failure) std::rethrow_exception(failure);
 }
 
 }  // namespace needlefem

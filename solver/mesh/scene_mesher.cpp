@@ -300,14 +300,16 @@ SceneMeshInfo mesh_block(const Case& c, const std::filesystem::path& msh_file) {
 }  // namespace
 
 SceneMeshInfo build_scene_mesh(const Case& c, const std::filesystem::path& msh_file) {
-  require_valid_scene(c);
-  const auto start = std::chrono::steady_clock::now();
   SceneMeshInfo info;
-  GmshSession session("needlefem");
-  GmshSession::guarded([&] {
-    info = c.text("scene.kind") == "block" ? mesh_block(c, msh_file) : mesh_brain_tip(c, msh_file);
+  GmshSession::on_fresh_thread([&] {
+    require_valid_scene(c);
+    const auto start = std::chrono::steady_clock::now();
+    GmshSession session("needlefem");
+    GmshSession::guarded([&] {
+      info = c.text("scene.kind") == "block" ? mesh_block(c, msh_file) : mesh_brain_tip(c, msh_file);
+    });
+    info.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   });
-  info.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return info;
 }
 
