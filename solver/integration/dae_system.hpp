@@ -38,6 +38,11 @@ class DaeSystem {
   // True if solve_jacobian() iterates (Krylov) rather than applying a factorisation: IDA then
   // treats the solver as matrix-iterative and reports its iterations.
   virtual bool iterative_linear_solver() const { return false; }
+  // True if the Newton matrix factored at c_j = factored_cj serves as well at cj, the state
+  // being nearly the same: the Krylov Newton then takes the probe step's factorisation over for
+  // IDA's first step instead of factoring again (IdaIntegrator::make_initial_rates_consistent).
+  // False, the default, is always safe.
+  virtual bool newton_matrix_serves(double /*factored_cj*/, double /*cj*/) const { return false; }
 };
 
 }  // namespace needlefem

@@ -204,5 +204,47 @@ TEST(ContactJacobian, PreconditioningMatrixWithoutPressureCouplingIsSemidefinite
   }
 }
 
+// depends_on_rates() tells the integrator whether the Newton matrix changes with c_j through the
+// contact (DaeSystem::newton_matrix_serves): checked against the matrix itself, the difference of
+// the face terms at c_j = 1 and c_j = 0 on sliding points, for each friction law.
+TEST(ContactJacobian, RateDependenceIsReportedExactlyWhereTheMatrixHasAVelocityPart) {
+  const TetMesh mesh = structured_block({0.0, 1e-3}, {0.0, 1e-3}, {0.0, 1e-3});
+  struct Law {
+    FrictionLaw law;
+    double friction, rate_strengthening;
+    bool depends;
+  };
+  for (const Law& law : {Law{FrictionLaw::return_map, 0.5, 0.0, false}, Law{FrictionLaw::return_map, 0.5, 2.0, true},
+                         Law{FrictionLaw::velocity, 0.5, 0.0, true}, Law{FrictionLaw::velocity, 0.0, 0.0, false}}) {
+    ContactParameters parameters;
+    parameters.reference_modulus = 1000.0;
+    parameters.elastic_slip = 0.008;
+    parameters.friction_law = law.law;
+    parameters.friction_coefficient = law.friction;
+    parameters.rate_strengthening = law.rate_strengthening;
+    const PenaltyContact contact(mesh, "z_max", tilted_moving_plane(), parameters);
+    EXPECT_EQ(contact.depends_on_rates(), law.depends);
+    std::mt19937 generator(5);
+    double largest_rate_part = 0.0, largest_entry = 0.0;
+    for (std::size_t face = 0; face < contact.face_count(); ++face) {
+      std::vector<double> x, v;
+      jittered_face_state(mesh, contact, face, generator, x, v);
+      const FaceTerms with_rates = contact.face_terms(face, x.data(), v.data(), 0.5, 1.0, true);
+      const FaceTerms without = contact.face_terms(face, x.data(), v.data(), 0.5, 0.0, true);
+      ASSERT_GT(with_rates.contact_area, 0.0);
+      for (std::size_t k = 0; k < without.jacobian.size(); ++k) {
+        largest_rate_part = std::max(largest_rate_part, std::abs(with_rates.jacobian[k] - without.jacobian[k]));
+        largest_entry = std::max(largest_entry, std::abs(without.jacobian[k]));
+      }
+    }
+    std::printf("law %d, mu %.1f, beta %.1f: largest c_j part %.3e (largest entry %.3e)\n", static_cast<int>(law.law),
+                law.friction, law.rate_strengthening, largest_rate_part, largest_entry);
+    if (law.depends)
+      EXPECT_GT(largest_rate_part, 0.0);
+    else
+      EXPECT_EQ(largest_rate_part, 0.0);
+  }
+}
+
 }  // namespace
 }  // namespace needlefem::contact::testing

@@ -80,6 +80,21 @@ double taylor_slope(const std::string& formulation, int order) {
   return slope_sum / count;
 }
 
+// With no contact, c_j enters the Newton matrix only through the condensed Prony terms,
+// f(c_j) = 1 - Σ g_i/(1 + c_j τ_i), and the matrix serves where f changes by less than 1e-3.
+// Miller's brain (g = 0.450, 0.365; τ = 0.5, 50 s): f(1e8) = 1 - 9e-9; f(1e5) = 1 - 9.1e-6 (the
+// probe step's matrix serves IDA's first step); f(1000) = 1 - 9.06e-4, just within; f(500) =
+// 1 - 1.81e-3 and f(2) = 0.771, outside.
+TEST(MechanicsJacobian, NewtonMatrixServesAnotherCjWhereThePronyFactorStays) {
+  Problem problem(block_case("", "[1.2, 0, 0, 0, 1, 0, 0, 0, 1]", "preset = \"miller-brain\"\n", 0.5, 2, "mixed"));
+  const MechanicsSystem& system = *problem.system;
+  EXPECT_TRUE(system.newton_matrix_serves(1e8, 1e5));
+  EXPECT_TRUE(system.newton_matrix_serves(1e5, 1e8));
+  EXPECT_TRUE(system.newton_matrix_serves(1e8, 1000.0));
+  EXPECT_FALSE(system.newton_matrix_serves(1e8, 500.0));
+  EXPECT_FALSE(system.newton_matrix_serves(1e8, 2.0));
+}
+
 // Where the factor only preconditions (integration.newton = "krylov", the default) it is single
 // precision, until IDA keeps failing: the third setup without an accepted step between goes to
 // MUMPS's double-precision LU, and the next accepted step brings the single-precision one back.

@@ -349,6 +349,11 @@ void PenaltyContact::gather(std::size_t face, const double* y, const double* ydo
   }
 }
 
+bool PenaltyContact::depends_on_rates() const {
+  if (parameters_.friction_law == FrictionLaw::return_map) return parameters_.rate_strengthening > 0.0;
+  return parameters_.friction_coefficient > 0.0;
+}
+
 ContactResultant PenaltyContact::resultant(double t, const double* y, const double* ydot,
                                            const mechanics::DofMap& dofs, const Point3& moment_point) const {
   ContactResultant total;

@@ -196,6 +196,8 @@ class PenaltyContact final : public mechanics::SurfaceLoad {
 
   ContactResultant resultant(double t, const double* y, const double* ydot, const mechanics::DofMap& dofs,
                              const Point3& moment_point = {}) const;
+  // Friction through the slip velocity (the velocity law, or the return map's rate strengthening).
+  bool depends_on_rates() const override;
 
   void add_residual(double t, const double* y, const double* ydot, const mechanics::DofMap& dofs,
                     double* f_u) const override;

@@ -340,6 +340,14 @@ DaeStatus MechanicsSystem::setup_jacobian(double t, Vec y, Vec ydot, double cj) 
   });
 }
 
+bool MechanicsSystem::newton_matrix_serves(double factored_cj, double cj) const {
+  constexpr double kServingTangentChange = 1e-3;
+  for (const auto& load : surface_loads_)
+    if (load->depends_on_rates()) return false;
+  const double factored = kernel_.condensed_tangent_scale(factored_cj), needed = kernel_.condensed_tangent_scale(cj);
+  return std::abs(factored - needed) <= kServingTangentChange * needed;
+}
+
 DaeStatus MechanicsSystem::solve_jacobian(Vec b, Vec x) {
   return guarded([&] {
     const int n = mesh_.nodes_per_tet, terms = kernel_.prony_terms();

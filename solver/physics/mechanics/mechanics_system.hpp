@@ -79,6 +79,10 @@ class MechanicsSystem final : public DaeSystem {
   void accept_step(double t, Vec y, Vec ydot) override;
   DaeStatus solve_jacobian(Vec b, Vec x) override;
   long linear_iterations() const override { return solver_->iterations(); }
+  // With no rate-dependent surface load, c_j enters the Newton matrix only through the condensed
+  // Prony terms, 1 - Σ g_i/(1 + c_j τ_i) (tet_element.hpp): it serves if that factor changes by
+  // less than 1e-3.
+  bool newton_matrix_serves(double factored_cj, double cj) const override;
   // Why callbacks asked IDA for a smaller step (DaeStatus::recoverable), counted.
   struct Rejections {
     long inverted_residuals = 0;     // an element with det F <= 0 in a residual evaluation

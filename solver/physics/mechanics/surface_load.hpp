@@ -30,6 +30,8 @@ class SurfaceLoad {
   // Called once per step the integrator accepts, with its state: loads with history (friction
   // anchors) update it here. Residuals in between see the history of the last accepted step.
   virtual void accept_step(double /*t*/, const double* /*y*/, const double* /*ydot*/, const DofMap& /*dofs*/) {}
+  // True if ∂r_s/∂u' is not zero: the Newton matrix then depends on c_j through this load.
+  virtual bool depends_on_rates() const = 0;
 };
 
 }  // namespace needlefem::mechanics
