@@ -106,18 +106,50 @@ void green_strain_operator(const std::array<double, 9>& F, const double* gradien
   }
 }
 
-CondensationPoint::CondensationPoint(const PointResponse& point, const double* point_gradient, int nodes,
-                                     double point_weight)
-    : weight(static_cast<float>(point_weight)) {
-  std::copy(point.deformation_gradient.begin(), point.deformation_gradient.end(), deformation_gradient.begin());
+void CondensationElement::set_point(int p, const PointResponse& point, const double* point_gradient, int nodes,
+                                    double point_weight) {
+  weight[p] = static_cast<float>(point_weight);
+  for (int k = 0; k < 9; ++k) deformation_gradient[k][p] = static_cast<float>(point.deformation_gradient[k]);
   for (int m = 0, k = 0; m < kVoigt; ++m)
-    for (int n = m; n < kVoigt; ++n) elastic_tangent[k++] = static_cast<float>(point.elastic_tangent[m * kVoigt + n]);
-  std::copy(point_gradient, point_gradient + 3 * nodes, gradient.begin());
+    for (int n = m; n < kVoigt; ++n) elastic_tangent[k++][p] = static_cast<float>(point.elastic_tangent[m * kVoigt + n]);
+  for (int k = 0; k < 3 * nodes; ++k) gradient[k][p] = static_cast<float>(point_gradient[k]);
 }
 
-std::array<double, kVoigt> CondensationPoint::tangent_stress(const double* u, int nodes) const {
-  const auto strain = green_strain_variation(deformation_gradient, gradient.data(), nodes, u);
-  std::array<double, kVoigt> stress{};
+// add_green_strain_transpose, lane by lane: out_a += Σ_q w_q F_q S_q G_qa.
+void CondensationElement::add_stress_transpose(const std::array<PointLanes, kVoigt>& s, int nodes,
+                                               double* out) const {
+  const PointLanes S[9] = {s[0], s[5], s[4], s[5], s[1], s[3], s[4], s[3], s[2]};
+  const auto& F = deformation_gradient;
+  PointLanes FS[9];
+  for (int i = 0; i < 3; ++i)
+    for (int J = 0; J < 3; ++J)
+      FS[3 * i + J] = weight * (F[3 * i] * S[J] + F[3 * i + 1] * S[3 + J] + F[3 * i + 2] * S[6 + J]);
+  for (int a = 0; a < nodes; ++a) {
+    const PointLanes* G = gradient.data() + 3 * a;
+    for (int i = 0; i < 3; ++i) {
+      const PointLanes sum = FS[3 * i] * G[0] + FS[3 * i + 1] * G[1] + FS[3 * i + 2] * G[2];
+      out[3 * a + i] += static_cast<double>(sum[0]) + sum[1] + sum[2] + sum[3];
+    }
+  }
+}
+
+// green_strain_variation, lane by lane, then D⁰ times the strain.
+std::array<PointLanes, kVoigt> CondensationElement::tangent_stress(const double* u, int nodes) const {
+  PointLanes H[9] = {};
+  for (int a = 0; a < nodes; ++a) {
+    const PointLanes* G = gradient.data() + 3 * a;
+    for (int i = 0; i < 3; ++i) {
+      const float value = static_cast<float>(u[3 * a + i]);
+      const PointLanes u_ai = {value, value, value, value};
+      for (int J = 0; J < 3; ++J) H[3 * i + J] += u_ai * G[J];
+    }
+  }
+  const auto& F = deformation_gradient;
+  PointLanes A[9];  // Fᵀ H
+  for (int I = 0; I < 3; ++I)
+    for (int J = 0; J < 3; ++J) A[3 * I + J] = F[I] * H[J] + F[3 + I] * H[3 + J] + F[6 + I] * H[6 + J];
+  const PointLanes strain[kVoigt] = {A[0], A[4], A[8], A[5] + A[7], A[2] + A[6], A[1] + A[3]};
+  std::array<PointLanes, kVoigt> stress{};
   for (int m = 0, k = 0; m < kVoigt; ++m) {
     stress[m] += elastic_tangent[k++] * strain[m];
     for (int n = m + 1; n < kVoigt; ++n, ++k) {

@@ -124,7 +124,7 @@ class TetElementKernel {
 void green_strain_operator(const std::array<double, 9>& F, const double* gradient, int nodes, double* B);
 // The two products with B_q that residuals and condensation need, without forming B_q (the
 // hot loops of a Newton-Krylov solve call them for every point of every element); F and the
-// gradients in double, or in float for the condensation (CondensationPoint), sums in double:
+// gradients in double, sums in double (CondensationElement has its own, for four points at once):
 //   out += w B_qᵀ s,  i.e. out_a += w F S G_a  (S the symmetric tensor of the Voigt stress s);
 template <class Real>
 void add_green_strain_transpose(const std::array<Real, 9>& F, const Real* gradient, int nodes,
@@ -156,25 +156,29 @@ std::array<double, kVoigt> green_strain_variation(const std::array<Real, 9>& F, 
   return {A[0], A[4], A[8], A[5] + A[7], A[2] + A[6], A[1] + A[3]};
 }
 
-// What the viscous condensation of a Newton solve needs at one quadrature point, in single
-// precision: the condensation is part of the preconditioner of IDA's GMRES (or of modified
-// Newton's inexact iteration), and it is memory-bound, so that these 244 bytes per point,
-// against 648 in double (PointResponse and the element's gradients), take less time to read.
-// D⁰ is stored as its upper triangle: it is symmetric (the second derivative of W_iso in E).
-struct CondensationPoint {
-  std::array<float, 9> deformation_gradient{};
-  std::array<float, kVoigt*(kVoigt + 1) / 2> elastic_tangent{};  // D⁰ by rows, upper triangle
-  std::array<float, kMaxElementDofs> gradient{};                 // G_a, a = 1..n
-  float weight = 0.0f;                                           // w_q
+// Four single-precision lanes, one per quadrature point of a TET10 (GCC's vector extension:
+// one SSE instruction on x86-64, NEON on ARM, for an operation over the element's points).
+using PointLanes = float __attribute__((vector_size(4 * sizeof(float))));
+static_assert(kMaxElementPoints == 4, "CondensationElement holds a lane per point");
 
-  CondensationPoint() = default;
-  CondensationPoint(const PointResponse& point, const double* gradient, int nodes, double weight);
-  // w B_qᵀ s added to out (3n).
-  void add_stress_transpose(const std::array<double, kVoigt>& s, int nodes, double* out) const {
-    add_green_strain_transpose(deformation_gradient, gradient.data(), nodes, s, weight, out);
-  }
-  // D⁰ B_q u.
-  std::array<double, kVoigt> tangent_stress(const double* u, int nodes) const;
+// What the viscous condensation of a Newton solve needs of one element, in single precision,
+// its points side by side (unused lanes of a one-point TET4 stay zero, weight included): the
+// condensation is part of the preconditioner of IDA's GMRES (or of modified Newton's inexact
+// iteration), where single precision is enough, and it runs for every element at every GMRES
+// iteration: point by point in scalar code it took 9 % of the default frictional case's CPU
+// time. D⁰ is stored as its upper triangle: it is symmetric (the second derivative of W_iso in E).
+struct CondensationElement {
+  std::array<PointLanes, 9> deformation_gradient{};
+  std::array<PointLanes, kVoigt*(kVoigt + 1) / 2> elastic_tangent{};  // D⁰ by rows, upper triangle
+  std::array<PointLanes, kMaxElementDofs> gradient{};                 // G_a, a = 1..n
+  PointLanes weight{};                                                // w_q
+
+  // Point p's lane from its evaluation, gradients (3n) and weight.
+  void set_point(int p, const PointResponse& point, const double* gradient, int nodes, double weight);
+  // Σ_q w_q B_qᵀ s_q added to out (3n); s holds each point's Voigt stress in its lane.
+  void add_stress_transpose(const std::array<PointLanes, kVoigt>& s, int nodes, double* out) const;
+  // D⁰ B_q u at every point q, in its lane.
+  std::array<PointLanes, kVoigt> tangent_stress(const double* u, int nodes) const;
 };
 
 }  // namespace needlefem::elements

@@ -253,7 +253,7 @@ DaeStatus MechanicsSystem::setup_jacobian(double t, Vec y, Vec ydot, double cj) 
     ReadArray state(y), rate(ydot);
     const int n = mesh_.nodes_per_tet, terms = kernel_.prony_terms();
     const double scale = kernel_.condensed_tangent_scale(cj);
-    if (terms) condensation_.resize(geometry_.size() * geometry_.front().points);
+    if (terms) condensation_.resize(geometry_.size());
     check(MatZeroEntries(jacobian_), "MatZeroEntries");
     std::atomic<bool> inverted = false;
     {
@@ -301,8 +301,8 @@ DaeStatus MechanicsSystem::setup_jacobian(double t, Vec y, Vec ydot, double cj) 
             const elements::ElementGeometry& geometry = geometry_[first + e];
             if (terms && !inverted)
               for (int p = 0; p < geometry.points; ++p)
-                condensation_[(first + e) * geometry.points + p] =
-                    elements::CondensationPoint(batch[e].points[p], geometry.gradient_at(p), n, geometry.weight[p]);
+                condensation_[first + e].set_point(p, batch[e].points[p], geometry.gradient_at(p), n,
+                                                   geometry.weight[p]);
           }
         }
       }
@@ -361,15 +361,18 @@ DaeStatus MechanicsSystem::solve_jacobian(Vec b, Vec x) {
       double* r = rhs.data();
       std::copy(in.data(), in.data() + nu, r);
       for_each_element_summed(terms ? geometry_.size() : 0, r, nu, [&](std::size_t k, double* sums) {
-        std::array<double, elements::kMaxElementDofs> force{};
+        // Σ_q w_q B_qᵀ Σ_i b_Qi / (cj + 1/τ_i).
+        std::array<elements::PointLanes, elements::kVoigt> source{};
         for (int p = 0; p < geometry_[k].points; ++p) {
-          // w Bᵀ Σ_i b_Qi / (cj + 1/τ_i).
-          std::array<double, elements::kVoigt> source{};
           const double* b_q = in.data() + viscous_offset(k) + static_cast<PetscInt>(p) * terms * elements::kVoigt;
-          for (int i = 0; i < terms; ++i)
-            for (int m = 0; m < elements::kVoigt; ++m) source[m] += relaxation[i] * b_q[i * elements::kVoigt + m];
-          condensation_[k * geometry_[k].points + p].add_stress_transpose(source, n, force.data());
+          for (int m = 0; m < elements::kVoigt; ++m) {
+            double sum = 0.0;
+            for (int i = 0; i < terms; ++i) sum += relaxation[i] * b_q[i * elements::kVoigt + m];
+            source[m][p] = static_cast<float>(sum);
+          }
         }
+        std::array<double, elements::kMaxElementDofs> force{};
+        condensation_[k].add_stress_transpose(source, n, force.data());
         const int* nodes = mesh_.tet(dofs_.tissue_tets[k]);
         for (int a = 0; a < n; ++a)
           for (int c = 0; c < 3; ++c) {
@@ -393,13 +396,13 @@ DaeStatus MechanicsSystem::solve_jacobian(Vec b, Vec x) {
     for (std::size_t k = 0; k < elements; ++k) {
       std::array<double, elements::kMaxElementDofs> u_e{};
       gather_displacement(x_u.data(), k, u_e.data());
+      const auto stress = condensation_[k].tangent_stress(u_e.data(), n);  // D⁰ B x_u, a lane per point
       for (int p = 0; p < geometry_[k].points; ++p) {
-        const auto stress = condensation_[k * geometry_[k].points + p].tangent_stress(u_e.data(), n);  // D⁰ B x_u
         const PetscInt offset = viscous_offset(k) + static_cast<PetscInt>(p) * terms * elements::kVoigt;
         for (int i = 0; i < terms; ++i)
           for (int m = 0; m < elements::kVoigt; ++m) {
             const PetscInt row = offset + i * elements::kVoigt + m;
-            out.data()[row] = relaxation[i] * (in.data()[row] + prony[i].g / prony[i].tau_s * stress[m]);
+            out.data()[row] = relaxation[i] * (in.data()[row] + prony[i].g / prony[i].tau_s * stress[m][p]);
           }
       }
     }

@@ -147,7 +147,7 @@ class MechanicsSystem final : public DaeSystem {
 
   // Newton matrix data kept from setup_jacobian for solve_jacobian.
   double cj_ = 0.0;
-  std::vector<elements::CondensationPoint> condensation_;  // per element and point (viscous only)
+  std::vector<elements::CondensationElement> condensation_;  // per element (viscous only)
   Mat jacobian_ = nullptr;
   // Per tissue element, a, i, b: where entry (3 r_a + i, 3 c_b) of its blocks sits in the
   // jacobian_'s CSR values (the pattern is fixed at construction).
