@@ -207,11 +207,12 @@ std::vector<KeySpec> build_schema() {
            "beam) 0.25 gave a 4x wrong reaction, and a tied brain-tip run a strain-rate spike at its last "
            "output"),
       choice("integration.krylov_preconditioner", "exact", {"exact", "symmetric"},
-             "integration.newton = krylov: the Newton matrix that preconditions GMRES. 'exact' (MUMPS LU where "
-             "sliding friction makes its symmetric part indefinite); 'symmetric' leaves friction's pressure "
-             "coupling out so that the sparse Cholesky factor always applies: frictional Table I study ~40 % "
-             "faster per case, but GMRES fails more often at hard stick/slip events: in two runs of the study one "
-             "design cut its steps to 1e-9 s (6 min instead of 2) and one stopped (IDA_CONV_FAIL) (README \"Speed\")"),
+             "integration.newton = krylov: the Newton matrix that preconditions GMRES. 'exact': the matrix itself "
+             "(single-precision LU where friction makes it unsymmetric); 'symmetric': Cholesky of the symmetric "
+             "part of the matrix without friction's pressure coupling, half the factor and solve cost, but on most "
+             "meshes that part is still indefinite at some setups and MUMPS LU takes over: default frictional case "
+             "31 s on its mesh, 64-83 s on five other meshes of the tip (mesh.seed 2-6) against 32-48 s with "
+             "'exact' (README \"Speed\")"),
       real("integration.newton_convergence_coefficient", 0.33, 0.0, 1.0,
            "Newton stops when its error estimate is below this fraction of the error-test tolerance "
            "(IDA's epcon). Uniaxial block at K/mu ~ 1e4: stress error 6e-3 at 0.33, 1e-4 at 0.01. The strain "

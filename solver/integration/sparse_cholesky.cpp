@@ -119,8 +119,8 @@ void cholmod_check(bool ok, const cholmod_common& common, const char* what) {
 
 }  // namespace
 
-SparseCholesky::SparseCholesky(std::vector<char> prescribed, Precision precision)
-    : prescribed_(std::move(prescribed)), precision_(precision), common_(new cholmod_common) {
+SparseCholesky::SparseCholesky(std::vector<char> prescribed, Precision precision, Unsymmetric unsymmetric)
+    : prescribed_(std::move(prescribed)), precision_(precision), unsymmetric_(unsymmetric), common_(new cholmod_common) {
   cholmod_start(common_);
   common_->print = 0;  // failures are reported through status and last_failure()
   // Small or sparse factors would otherwise be simplicial; the single-precision factor is supernodal.
@@ -226,7 +226,7 @@ bool SparseCholesky::factor(Mat A) {
   {
     MatrixValues values(A);
     const double* v = values.data();
-    if (precision_ == Precision::single_precision) {  // only then is an unsymmetric J_ff factored by LU
+    if (precision_ == Precision::single_precision && unsymmetric_ == Unsymmetric::lu) {  // only then is J_ff factored by LU
       double largest = 0.0, skew = 0.0;
       for (std::size_t m = 0; m < entry_.size(); ++m) {
         largest = std::max({largest, std::abs(v[entry_[m]]), std::abs(v[mirror_[m]])});

@@ -20,9 +20,9 @@
 // while the matrix keeps its number of entries (its pattern); a changed pattern starts afresh.
 //
 // Precision::single_precision factors and solves in single precision on CHOLMOD's symbolic
-// factor (SinglePrecisionFactor, single_precision_factor.hpp), and factors an unsymmetric J_ff
-// (|J_ij - J_ji| above kSymmetryTolerance times its largest entry: Coulomb friction) itself by
-// LU on the same structure, so that solve() returns J⁻¹ b, not S_ff's: GMRES then gets the
+// factor (SinglePrecisionFactor, single_precision_factor.hpp), and (Unsymmetric::lu, the default)
+// factors an unsymmetric J_ff (|J_ij - J_ji| above kSymmetryTolerance times its largest entry:
+// Coulomb friction) itself by LU on the same structure, so that solve() returns J⁻¹ b, not S_ff's: GMRES then gets the
 // exact Newton matrix as its preconditioner at about twice the Cholesky factor's cost instead
 // of a pivoting LU's (MUMPS, whose factor has 2.3 times the Cholesky factor's entries). For solves that precondition an
 // iteration (IDA's GMRES), not for exact ones: the solution carries a relative error of about
@@ -49,8 +49,13 @@ class SinglePrecisionFactor;
 class SparseCholesky {
  public:
   enum class Precision { double_precision, single_precision };
+  // What single precision does with an unsymmetric J_ff: LU of J_ff, or Cholesky of S_ff all the
+  // same, for a preconditioner kept symmetric on purpose (integration.krylov_preconditioner =
+  // "symmetric": friction's pressure coupling left out, the rest of its slip terms unsymmetric).
+  enum class Unsymmetric { lu, symmetric_part };
   // prescribed[i] != 0 marks unknown i as given (its row is not factored).
-  explicit SparseCholesky(std::vector<char> prescribed, Precision precision = Precision::double_precision);
+  explicit SparseCholesky(std::vector<char> prescribed, Precision precision = Precision::double_precision,
+                          Unsymmetric unsymmetric = Unsymmetric::lu);
   ~SparseCholesky();
   SparseCholesky(const SparseCholesky&) = delete;
   SparseCholesky& operator=(const SparseCholesky&) = delete;
@@ -89,6 +94,7 @@ class SparseCholesky {
   std::vector<Coupling> couplings_;
   Mat matrix_ = nullptr;  // the A of the last factor()
   Precision precision_;
+  Unsymmetric unsymmetric_;
   std::unique_ptr<SinglePrecisionFactor> single_;  // Precision::single_precision's factor
 
   cholmod_common_struct* common_ = nullptr;

@@ -333,7 +333,17 @@ TEST(SparseCholesky, UnsymmetricMatrixSolvesWithItsSymmetricFreeBlock) {
   std::printf("unsymmetric: |x - x_ref| / |x_ref| = %.2e (the exact A^-1 b is %.2e away)\n", error, distance);
   EXPECT_LT(error, 1e-12);
   EXPECT_GT(distance, 1e-3);  // the skew part matters: the test can tell the two apart
-  for (Vec v : {b, x, b_p, coupling, rhs, reference, unsymmetric}) VecDestroy(&v);
+  // In single precision with Unsymmetric::symmetric_part (the "symmetric" Krylov preconditioner):
+  // the same S_ff solve to single precision, where the default would factor A's free block by LU.
+  SparseCholesky symmetric_part(prescribed, SparseCholesky::Precision::single_precision,
+                                SparseCholesky::Unsymmetric::symmetric_part);
+  ASSERT_TRUE(symmetric_part.factor(A)) << symmetric_part.last_failure();
+  EXPECT_EQ(symmetric_part.lu_factorizations(), 0);
+  Vec x_single = cholesky_solve(symmetric_part, b);
+  const double single_error = relative_difference(x_single, reference);
+  std::printf("single precision, symmetric part: |x - x_ref| / |x_ref| = %.2e\n", single_error);
+  EXPECT_LT(single_error, 1e-5);
+  for (Vec v : {b, x, x_single, b_p, coupling, rhs, reference, unsymmetric}) VecDestroy(&v);
   MatDestroy(&At);
   MatDestroy(&S);
   MatDestroy(&A);

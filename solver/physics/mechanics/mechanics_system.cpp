@@ -143,9 +143,11 @@ MechanicsSystem::MechanicsSystem(const TetMesh& mesh, const material::Material& 
   symmetric_preconditioner_ = solver_options.symmetric_preconditioner;
   KspOptions ksp_options = solver_options;
   if (solver_options.method == "cholmod") {
-    cholesky_ = std::make_unique<SparseCholesky>(prescribed_, solver_options.preconditioner_only
-                                                                  ? SparseCholesky::Precision::single_precision
-                                                                  : SparseCholesky::Precision::double_precision);
+    cholesky_ = std::make_unique<SparseCholesky>(
+        prescribed_,
+        solver_options.preconditioner_only ? SparseCholesky::Precision::single_precision
+                                           : SparseCholesky::Precision::double_precision,
+        symmetric_preconditioner_ ? SparseCholesky::Unsymmetric::symmetric_part : SparseCholesky::Unsymmetric::lu);
     ksp_options.method = "mumps";
   }
   solver_ = std::make_unique<KspSolver>(PETSC_COMM_SELF, ksp_options);
