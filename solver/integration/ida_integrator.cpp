@@ -50,11 +50,9 @@ class StaleMatrixPolicy {
     stale_ = false;
   }
   // IDA's first setup takes the matrix factored for the consistent initial rates instead
-  // (IdaCallbacks::probe_matrix), tried like a stale one.
+  // (IdaCallbacks::probe_matrix_cj), tried like a stale one.
   void matrix_taken_over() {
-    if (gmres_) gmres_->maxl = stale_limit_;
-    stale_ = true;
-    stale_tried_ = stale_failed_ = false;
+    become_stale();
     ++taken_over_;
   }
   // The step is over: the matrix becomes stale for the next one.
@@ -66,8 +64,7 @@ class StaleMatrixPolicy {
     } else if (stale_tried_) {
       failures_in_a_row_ = 0;
     }
-    stale_ = true;
-    stale_tried_ = stale_failed_ = false;
+    become_stale();
   }
   // At each preconditioner solve: true refuses the stale matrix.
   bool refuse_matrix() {
@@ -86,6 +83,11 @@ class StaleMatrixPolicy {
 
  private:
   static constexpr int kMostStepsSkipped = 3;
+  void become_stale() {
+    if (gmres_) gmres_->maxl = stale_limit_;
+    stale_ = true;
+    stale_tried_ = stale_failed_ = false;
+  }
   SUNLinearSolverContent_SPGMR gmres_ = nullptr;  // null: not a Krylov Newton
   int fresh_limit_ = 0, stale_limit_ = 0;
   bool stale_ = false;          // the factored matrix is from an earlier step

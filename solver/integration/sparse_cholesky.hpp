@@ -22,8 +22,8 @@
 // Precision::single_precision factors and solves in single precision on CHOLMOD's symbolic
 // factor (SinglePrecisionFactor, single_precision_factor.hpp), and (Unsymmetric::lu, the default)
 // factors an unsymmetric J_ff (|J_ij - J_ji| above kSymmetryTolerance times its largest entry:
-// Coulomb friction) itself by LU on the same structure, so that solve() returns J⁻¹ b, not S_ff's: GMRES then gets the
-// exact Newton matrix as its preconditioner at about twice the Cholesky factor's cost instead
+// Coulomb friction) itself by LU on the same structure, so that solve() returns J⁻¹ b, not
+// S_ff's: GMRES then gets the exact Newton matrix as its preconditioner at about twice the Cholesky factor's cost instead
 // of a pivoting LU's (MUMPS, whose factor has 2.3 times the Cholesky factor's entries). For solves that precondition an
 // iteration (IDA's GMRES), not for exact ones: the solution carries a relative error of about
 // κ(S_ff) × 6e-8. Why: a solve reads the whole factor twice and is memory-bound, so half the

@@ -23,7 +23,8 @@ class GmshSession {
   // nodes of the default brain tip, which frictional runs turn into other step sequences). A new thread allocates from a fresh malloc arena, laid
   // out by the meshing alone and not by what the process allocated before (paths, options); with
   // the address space not randomised (app/main.cpp) the same input then gives the same mesh bit
-  // for bit, whatever the output or case path, the environment, or the command.
+  // for bit, whatever the output or case path, the environment, or the command; not whatever
+  // the build or the executable's path (gmsh keeps that path, whose length shifts the layout).
   static void on_fresh_thread(const std::function<void()>& body);
 
  private:

@@ -355,8 +355,11 @@ DaeStatus MechanicsSystem::solve_jacobian(Vec b, Vec x) {
     const int n = mesh_.nodes_per_tet, terms = kernel_.prony_terms();
     const auto& prony = kernel_.prony();
     const PetscInt nu = displacement_dofs();
-    std::vector<double> relaxation(terms);  // 1 / (cj + 1/τ_i)
-    for (int i = 0; i < terms; ++i) relaxation[i] = 1.0 / (cj_ + 1.0 / prony[i].tau_s);
+    std::vector<double> relaxation(terms), rate_gain(terms);  // 1 / (cj + 1/τ_i), g_i / τ_i
+    for (int i = 0; i < terms; ++i) {
+      relaxation[i] = 1.0 / (cj_ + 1.0 / prony[i].tau_s);
+      rate_gain[i] = prony[i].g / prony[i].tau_s;
+    }
     {
       ReadArray in(b);
       WriteArray rhs(rhs_);
@@ -404,7 +407,7 @@ DaeStatus MechanicsSystem::solve_jacobian(Vec b, Vec x) {
         for (int i = 0; i < terms; ++i)
           for (int m = 0; m < elements::kVoigt; ++m) {
             const PetscInt row = offset + i * elements::kVoigt + m;
-            out.data()[row] = relaxation[i] * (in.data()[row] + prony[i].g / prony[i].tau_s * stress[m][p]);
+            out.data()[row] = relaxation[i] * (in.data()[row] + rate_gain[i] * stress[m][p]);
           }
       }
     }
