@@ -14,6 +14,7 @@
 
 #include "app/commands.hpp"
 #include "case/schema.hpp"
+#include "integration/blas_threads.hpp"
 
 namespace needlefem::app {
 
@@ -68,10 +69,13 @@ int main(int argc, char** argv) {
   // brain-tip benchmark 42.7 s with spinning OpenMP threads against 35.9 s passive (before the
   // single-precision factor), then 22.1 s with two OpenBLAS threads against 20.5 s with one; the
   // default frictional case, whose MUMPS LU factorisations lose BLAS's threads, 60.3 against
-  // 56.1 s. Unless the user chose them, start again with these settings.
+  // 56.1 s. OpenBLAS's kernels for a CPU it does not know are SSE3 ones (blas_threads.hpp).
+  // Unless the user chose them, start again with these settings.
   bool restart = app::stop_address_randomisation(argc, argv);
-  for (const auto& [variable, value] : {std::pair{"OMP_WAIT_POLICY", "passive"}, std::pair{"OPENBLAS_NUM_THREADS", "1"}})
-    if (!std::getenv(variable)) restart = setenv(variable, value, 1) == 0 || restart;
+  const char* blas_core = openblas_core_for_unrecognised_cpu();
+  for (const auto& [variable, value] : {std::pair{"OMP_WAIT_POLICY", "passive"}, std::pair{"OPENBLAS_NUM_THREADS", "1"},
+                                        std::pair{"OPENBLAS_CORETYPE", blas_core}})
+    if (value && !std::getenv(variable)) restart = setenv(variable, value, 1) == 0 || restart;
   if (restart) execv("/proc/self/exe", argv);  // returns only on failure: then run on with the defaults
   // Everything after a bare "--" belongs to PETSc/SUNDIALS, untouched.
   std::vector<std::string> args(argv + 1, argv + argc);

@@ -2,6 +2,8 @@
 
 #include <dlfcn.h>
 
+#include <string_view>
+
 namespace needlefem {
 
 namespace {
@@ -21,6 +23,22 @@ const OpenBlasThreadCalls& openblas() {
 }
 
 }  // namespace
+
+const char* openblas_kernel() {
+  const auto corename = reinterpret_cast<char* (*)()>(dlsym(RTLD_DEFAULT, "openblas_get_corename"));
+  return corename ? corename() : "";
+}
+
+const char* openblas_core_for_unrecognised_cpu() {
+  if (std::string_view(openblas_kernel()) != "Prescott") return nullptr;
+  __builtin_cpu_init();
+  if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512cd") && __builtin_cpu_supports("avx512bw") &&
+      __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512vl"))
+    return "SkylakeX";
+  if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) return "Haswell";
+  if (__builtin_cpu_supports("avx")) return "Sandybridge";
+  return nullptr;
+}
 
 BlasThreads::BlasThreads(int threads) {
   const OpenBlasThreadCalls& calls = openblas();

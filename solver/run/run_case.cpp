@@ -13,6 +13,7 @@
 #include <fmt/core.h>
 
 #include "case/case.hpp"
+#include "integration/blas_threads.hpp"
 #include "integration/case_options.hpp"
 #include "integration/ida_integrator.hpp"
 #include "integration/petsc_session.hpp"
@@ -191,6 +192,7 @@ nlohmann::json summary_json(const Case& c, const material::Material* material, c
                                       {"failed_factorisations", record.rejections.failed_factorisations},
                                       {"failed_solves", record.rejections.failed_solves}}},
                  {"linear_solver", c.text("integration.linear_solver")},
+                 {"blas_kernel", openblas_kernel()},
                  {"factorisations", {{"cholesky", record.factorisations.cholesky},
                                      {"lu", record.factorisations.lu},
                                      {"ksp", record.factorisations.ksp}}},

@@ -96,6 +96,23 @@ def check_common(out, summary, times):
     check(len(history(out)) == times, f"history.csv has {times} rows")
 
 
+def check_blas_kernel(kernel):
+    """OpenBLAS falls back to its SSE3 "Prescott" kernels on a CPU model it does not know, 5x slower
+    in single-precision GEMM on an AVX-512 Xeon; needlefem then restarts itself with the kernels
+    of the instruction sets the CPU reports (integration/blas_threads.hpp)."""
+    flags = set()
+    with open("/proc/cpuinfo") as cpuinfo:
+        for line in cpuinfo:
+            if line.startswith("flags"):
+                flags = set(line.split(":", 1)[1].split())
+                break
+    expected = ("SkylakeX" if {"avx512f", "avx512cd", "avx512bw", "avx512dq", "avx512vl"} <= flags
+                else "Haswell" if {"avx2", "fma"} <= flags else None)
+    if kernel and expected:
+        check(kernel != "Prescott", f"OpenBLAS runs {kernel} kernels, not its SSE3 fallback, on a CPU with {expected}'s "
+              "instruction sets")
+
+
 def block(args):
     out = pathlib.Path(args.out)
     result = run(args.exe, args.case, out, [])
@@ -114,6 +131,7 @@ def block(args):
     rate = summary["max"]["strain_rate_per_s"]
     check(rate["time_s"] == 0.0, f"max strain rate at t = 0 (found at t = {rate['time_s']} s)")
     check(summary["solver"]["initial_rates"]["converged"], "the probe step for the initial rates converged")
+    check_blas_kernel(summary["solver"]["blas_kernel"])
     close(rate["value"], RATE / (1 + RATE * rate["time_s"]), 1e-3, "max strain rate = d ln(lambda)/dt")
     last = history(out)[-1]
     close(float(last["max_strain_rate"]), RATE / l_end, 1e-3, "strain rate at t = 1 s = 0.2/1.2")
