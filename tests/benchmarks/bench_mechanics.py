@@ -20,10 +20,11 @@ GMRES on difference-quotient Jacobian products preconditioned by the factored Ne
 import argparse
 import json
 import math
-import os
 import subprocess
 import time
 from pathlib import Path
+
+from machine import describe_machine
 
 root = Path(__file__).resolve().parents[2]
 parser = argparse.ArgumentParser()
@@ -77,7 +78,7 @@ for core, newton in [(core, newton) for core in args.cores for newton in args.ne
     print(json.dumps(row), flush=True)
 
 report = {"benchmark": "brain-tip cavity motion, 0.1 s history", "case": str(args.case.relative_to(root)),
-          "cpu_count": os.cpu_count(), "target": "0.4 mm core under 10 s on 2 cores", "runs": rows}
+          "machine": describe_machine(), "target": "0.4 mm core under 10 s on 2 cores", "runs": rows}
 args.out.mkdir(parents=True, exist_ok=True)
 (args.out / "bench_mechanics.json").write_text(json.dumps(report, indent=2) + "\n")
 print(f"written {args.out / 'bench_mechanics.json'}")

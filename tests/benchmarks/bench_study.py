@@ -15,10 +15,11 @@ calls, not one measurement; start from an empty OUT for a timing.
 import argparse
 import csv
 import json
-import os
 import subprocess
 import time
 from pathlib import Path
+
+from machine import describe_machine
 
 ROOT = Path(__file__).resolve().parents[2]
 TARGET_PER_CASE_S = 30.0
@@ -63,7 +64,7 @@ report = {
     "benchmark": "paper 001 study at the 0.4 mm core (frictional contact)",
     "sweep": str(args.sweep.relative_to(ROOT)) if args.sweep.is_relative_to(ROOT) else str(args.sweep),
     "jobs": args.jobs,
-    "cpu_count": os.cpu_count(),
+    "machine": describe_machine(),
     "sweep_exit_code": sweep.returncode,
     "study_wall_s": study_wall,
     "case_wall_s": {"min": min(walls, default=None), "max": max(walls, default=None),
