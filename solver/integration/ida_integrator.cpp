@@ -17,6 +17,7 @@
 
 #include "integration/dae_linear_solver.hpp"
 #include "integration/petsc_session.hpp"
+#include "integration/threaded_vector_ops.hpp"
 
 namespace needlefem {
 
@@ -289,6 +290,8 @@ IdaIntegrator::IdaIntegrator(DaeSystem& system, const IdaOptions& options, doubl
   system.initial_state(t0, m.y, m.ydot);
   m.y_nv = N_VMake_Petsc(m.y, m.context);
   m.ydot_nv = N_VMake_Petsc(m.ydot, m.context);
+  use_threaded_vector_operations(m.y_nv);  // and so IDA's and GMRES's clones
+  use_threaded_vector_operations(m.ydot_nv);
 
   m.ida = IDACreate(m.context);
   if (!m.ida) throw std::runtime_error("IDACreate failed");

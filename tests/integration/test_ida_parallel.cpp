@@ -9,7 +9,11 @@
 #include <gtest/gtest.h>
 #include <mpi.h>
 
+#include <nvector/nvector_petsc.h>
+#include <sundials/sundials_context.h>
+
 #include "integration/ida_integrator.hpp"
+#include "integration/threaded_vector_ops.hpp"
 #include "maxwell_solid.hpp"
 
 namespace needlefem {
@@ -53,6 +57,22 @@ TEST(IdaIntegratorParallel, DistributedMaxwellSolidsMatchTheirClosedForms) {
   EXPECT_LT(worst_global, 20.0 * rtol);
   EXPECT_EQ(extremes[0], -extremes[1]) << "ranks disagree on the number of steps";
   EXPECT_EQ(system.jacobian_setups(), c.jacobian_setups);
+}
+
+// The threaded vector operations sum only their own rank's part: a distributed vector keeps
+// NVECTOR_PETSC's, whose reductions span the ranks.
+TEST(IdaIntegratorParallel, DistributedVectorsKeepPetscsOperations) {
+  SUNContext context = nullptr;
+  ASSERT_EQ(SUNContext_Create(&PETSC_COMM_WORLD, &context), 0);
+  Vec v = nullptr;
+  petsc_check(VecCreateMPI(PETSC_COMM_WORLD, 10, PETSC_DETERMINE, &v), "VecCreateMPI");
+  N_Vector nv = N_VMake_Petsc(v, context);
+  const auto petsc_linear_sum = nv->ops->nvlinearsum;
+  EXPECT_FALSE(use_threaded_vector_operations(nv));
+  EXPECT_EQ(nv->ops->nvlinearsum, petsc_linear_sum);
+  N_VDestroy(nv);
+  VecDestroy(&v);
+  SUNContext_Free(&context);
 }
 
 }  // namespace

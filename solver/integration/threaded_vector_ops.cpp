@@ -1,0 +1,184 @@
+#include "integration/threaded_vector_ops.hpp"
+
+#include <nvector/nvector_petsc.h>
+#include <omp.h>
+#include <petscvec.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace needlefem {
+
+namespace {
+
+// Below this length the threads' start-up costs more than they save.
+constexpr PetscInt kSerialBelow = 16384;
+
+// The local arrays of an operation's vectors: inputs read, the output written (an input may be
+// the output: PETSc hands out the same array). Unlike petsc_arrays.hpp's views these never
+// throw: SUNDIALS's C code calls the operations, and no exception may cross it.
+class Input {
+ public:
+  explicit Input(N_Vector v) : vec_(N_VGetVector_Petsc(v)) {
+    VecGetLocalSize(vec_, &size_);
+    VecGetArrayRead(vec_, &data_);
+  }
+  ~Input() { VecRestoreArrayRead(vec_, &data_); }
+  Input(const Input&) = delete;
+  Input& operator=(const Input&) = delete;
+  const double* data() const { return data_; }
+  PetscInt size() const { return size_; }
+
+ private:
+  Vec vec_;
+  PetscInt size_ = 0;
+  const PetscScalar* data_ = nullptr;
+};
+
+class Output {
+ public:
+  explicit Output(N_Vector v) : vec_(N_VGetVector_Petsc(v)) { VecGetArray(vec_, &data_); }
+  ~Output() { VecRestoreArray(vec_, &data_); }
+  Output(const Output&) = delete;
+  Output& operator=(const Output&) = delete;
+  double* data() const { return data_; }
+
+ private:
+  Vec vec_;
+  PetscScalar* data_ = nullptr;
+};
+
+template <class Body>
+void for_each_index(PetscInt n, Body&& body) {
+  if (n < kSerialBelow) {
+    for (PetscInt i = 0; i < n; ++i) body(i);
+    return;
+  }
+#pragma omp parallel for schedule(static)
+  for (PetscInt i = 0; i < n; ++i) body(i);
+}
+
+// Σ term(i): a part per thread, [n t / T, n (t + 1) / T), the parts added in thread order.
+template <class Term>
+double sum_in_thread_order(PetscInt n, Term&& term) {
+  const auto part_sum = [&](PetscInt begin, PetscInt end) {
+    double sum = 0.0;
+    for (PetscInt i = begin; i < end; ++i) sum += term(i);
+    return sum;
+  };
+  if (n < kSerialBelow) return part_sum(0, n);
+  std::vector<double> parts(static_cast<std::size_t>(omp_get_max_threads()), 0.0);
+#pragma omp parallel
+  {
+    const PetscInt t = omp_get_thread_num(), count = omp_get_num_threads();
+    parts[static_cast<std::size_t>(t)] = part_sum(n * t / count, n * (t + 1) / count);
+  }
+  double sum = 0.0;
+  for (double part : parts) sum += part;
+  return sum;
+}
+
+PetscInt global_size(N_Vector v) {
+  PetscInt n = 0;
+  VecGetSize(N_VGetVector_Petsc(v), &n);
+  return n;
+}
+
+void linear_sum(realtype a, N_Vector x, realtype b, N_Vector y, N_Vector z) {
+  const Input in_x(x), in_y(y);
+  const Output out(z);
+  const double *xs = in_x.data(), *ys = in_y.data();
+  double* zs = out.data();
+  for_each_index(in_x.size(), [&](PetscInt i) { zs[i] = a * xs[i] + b * ys[i]; });
+}
+
+void constant(realtype c, N_Vector z) {
+  PetscInt n = 0;
+  VecGetLocalSize(N_VGetVector_Petsc(z), &n);
+  const Output out(z);
+  double* zs = out.data();
+  for_each_index(n, [&](PetscInt i) { zs[i] = c; });
+}
+
+void product(N_Vector x, N_Vector y, N_Vector z) {
+  const Input in_x(x), in_y(y);
+  const Output out(z);
+  const double *xs = in_x.data(), *ys = in_y.data();
+  double* zs = out.data();
+  for_each_index(in_x.size(), [&](PetscInt i) { zs[i] = xs[i] * ys[i]; });
+}
+
+void quotient(N_Vector x, N_Vector y, N_Vector z) {
+  const Input in_x(x), in_y(y);
+  const Output out(z);
+  const double *xs = in_x.data(), *ys = in_y.data();
+  double* zs = out.data();
+  for_each_index(in_x.size(), [&](PetscInt i) { zs[i] = xs[i] / ys[i]; });
+}
+
+void scale(realtype c, N_Vector x, N_Vector z) {
+  const Input in_x(x);
+  const Output out(z);
+  const double* xs = in_x.data();
+  double* zs = out.data();
+  for_each_index(in_x.size(), [&](PetscInt i) { zs[i] = c * xs[i]; });
+}
+
+realtype dot_product(N_Vector x, N_Vector y) {
+  const Input in_x(x), in_y(y);
+  const double *xs = in_x.data(), *ys = in_y.data();
+  return sum_in_thread_order(in_x.size(), [&](PetscInt i) { return xs[i] * ys[i]; });
+}
+
+realtype max_norm(N_Vector x) {
+  const Input in_x(x);
+  const double* xs = in_x.data();
+  const PetscInt n = in_x.size();
+  double largest = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : largest) if (n >= kSerialBelow)
+  for (PetscInt i = 0; i < n; ++i) largest = std::max(largest, std::abs(xs[i]));
+  return largest;
+}
+
+realtype weighted_rms_norm(N_Vector x, N_Vector w) {
+  const Input in_x(x), in_w(w);
+  const double *xs = in_x.data(), *ws = in_w.data();
+  const double sum = sum_in_thread_order(in_x.size(), [&](PetscInt i) {
+    const double v = xs[i] * ws[i];
+    return v * v;
+  });
+  return std::sqrt(sum / static_cast<double>(global_size(x)));
+}
+
+realtype weighted_rms_norm_masked(N_Vector x, N_Vector w, N_Vector id) {
+  const Input in_x(x), in_w(w), in_id(id);
+  const double *xs = in_x.data(), *ws = in_w.data(), *ids = in_id.data();
+  const double sum = sum_in_thread_order(in_x.size(), [&](PetscInt i) {
+    const double v = ids[i] > 0.0 ? xs[i] * ws[i] : 0.0;
+    return v * v;
+  });
+  return std::sqrt(sum / static_cast<double>(global_size(x)));
+}
+
+}  // namespace
+
+bool use_threaded_vector_operations(N_Vector v) {
+  MPI_Comm comm = MPI_COMM_NULL;
+  int ranks = 0;
+  if (PetscObjectGetComm(reinterpret_cast<PetscObject>(N_VGetVector_Petsc(v)), &comm) != 0 ||
+      MPI_Comm_size(comm, &ranks) != MPI_SUCCESS || ranks != 1)
+    return false;
+  v->ops->nvlinearsum = linear_sum;
+  v->ops->nvconst = constant;
+  v->ops->nvprod = product;
+  v->ops->nvdiv = quotient;
+  v->ops->nvscale = scale;
+  v->ops->nvdotprod = dot_product;
+  v->ops->nvmaxnorm = max_norm;
+  v->ops->nvwrmsnorm = weighted_rms_norm;
+  v->ops->nvwrmsnormmask = weighted_rms_norm_masked;
+  return true;
+}
+
+}  // namespace needlefem
