@@ -19,6 +19,9 @@ namespace needlefem {
 // Replaces the operations above in v's operation table, which every clone of v copies (IDA
 // clones its work vectors from the initial state, SPGMR its Krylov basis). Only for a vector on
 // one MPI rank; otherwise v is left as it is. Returns whether it replaced them.
+// Measured on 736k entries (second benchmark machine), PETSc's / these on one thread / on two:
+// linear sum 0.59 / 0.61 / 0.35 ms, dot product 0.37–0.39 / 0.39 / 0.21 ms, weighted RMS norm
+// 1.9–2.0 / 0.38 / 0.23 ms (the sums run eight lanes: one running sum is latency-bound, 0.52 ms).
 bool use_threaded_vector_operations(N_Vector v);
 
 }  // namespace needlefem
