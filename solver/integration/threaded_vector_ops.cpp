@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <type_traits>
 #include <vector>
 
 namespace needlefem {
@@ -19,36 +20,35 @@ constexpr PetscInt kSerialBelow = 16384;
 // The local arrays of an operation's vectors: inputs read, the output written (an input may be
 // the output: PETSc hands out the same array). Unlike petsc_arrays.hpp's views these never
 // throw: SUNDIALS's C code calls the operations, and no exception may cross it.
-class Input {
+template <bool kWritable>
+class LocalArray {
  public:
-  explicit Input(N_Vector v) : vec_(N_VGetVector_Petsc(v)) {
+  using Pointer = std::conditional_t<kWritable, PetscScalar*, const PetscScalar*>;
+  explicit LocalArray(N_Vector v) : vec_(N_VGetVector_Petsc(v)) {
     VecGetLocalSize(vec_, &size_);
-    VecGetArrayRead(vec_, &data_);
+    if constexpr (kWritable)
+      VecGetArray(vec_, &data_);
+    else
+      VecGetArrayRead(vec_, &data_);
   }
-  ~Input() { VecRestoreArrayRead(vec_, &data_); }
-  Input(const Input&) = delete;
-  Input& operator=(const Input&) = delete;
-  const double* data() const { return data_; }
+  ~LocalArray() {
+    if constexpr (kWritable)
+      VecRestoreArray(vec_, &data_);
+    else
+      VecRestoreArrayRead(vec_, &data_);
+  }
+  LocalArray(const LocalArray&) = delete;
+  LocalArray& operator=(const LocalArray&) = delete;
+  Pointer data() const { return data_; }
   PetscInt size() const { return size_; }
 
  private:
   Vec vec_;
   PetscInt size_ = 0;
-  const PetscScalar* data_ = nullptr;
+  Pointer data_ = nullptr;
 };
-
-class Output {
- public:
-  explicit Output(N_Vector v) : vec_(N_VGetVector_Petsc(v)) { VecGetArray(vec_, &data_); }
-  ~Output() { VecRestoreArray(vec_, &data_); }
-  Output(const Output&) = delete;
-  Output& operator=(const Output&) = delete;
-  double* data() const { return data_; }
-
- private:
-  Vec vec_;
-  PetscScalar* data_ = nullptr;
-};
+using Input = LocalArray<false>;
+using Output = LocalArray<true>;
 
 template <class Body>
 void for_each_index(PetscInt n, Body&& body) {
@@ -93,44 +93,36 @@ PetscInt global_size(N_Vector v) {
   return n;
 }
 
-void linear_sum(realtype a, N_Vector x, realtype b, N_Vector y, N_Vector z) {
+// z_i = op(x_i, y_i).
+template <class Op>
+void elementwise(N_Vector x, N_Vector y, N_Vector z, Op op) {
   const Input in_x(x), in_y(y);
   const Output out(z);
   const double *xs = in_x.data(), *ys = in_y.data();
   double* zs = out.data();
-  for_each_index(in_x.size(), [&](PetscInt i) { zs[i] = a * xs[i] + b * ys[i]; });
+  for_each_index(out.size(), [&](PetscInt i) { zs[i] = op(xs[i], ys[i]); });
 }
 
-void constant(realtype c, N_Vector z) {
-  PetscInt n = 0;
-  VecGetLocalSize(N_VGetVector_Petsc(z), &n);
-  const Output out(z);
-  double* zs = out.data();
-  for_each_index(n, [&](PetscInt i) { zs[i] = c; });
+void linear_sum(realtype a, N_Vector x, realtype b, N_Vector y, N_Vector z) {
+  elementwise(x, y, z, [a, b](double p, double q) { return a * p + b * q; });
 }
 
 void product(N_Vector x, N_Vector y, N_Vector z) {
-  const Input in_x(x), in_y(y);
-  const Output out(z);
-  const double *xs = in_x.data(), *ys = in_y.data();
-  double* zs = out.data();
-  for_each_index(in_x.size(), [&](PetscInt i) { zs[i] = xs[i] * ys[i]; });
+  elementwise(x, y, z, [](double p, double q) { return p * q; });
 }
 
 void quotient(N_Vector x, N_Vector y, N_Vector z) {
-  const Input in_x(x), in_y(y);
-  const Output out(z);
-  const double *xs = in_x.data(), *ys = in_y.data();
-  double* zs = out.data();
-  for_each_index(in_x.size(), [&](PetscInt i) { zs[i] = xs[i] / ys[i]; });
+  elementwise(x, y, z, [](double p, double q) { return p / q; });
 }
 
 void scale(realtype c, N_Vector x, N_Vector z) {
-  const Input in_x(x);
+  elementwise(x, x, z, [c](double p, double) { return c * p; });
+}
+
+void constant(realtype c, N_Vector z) {
   const Output out(z);
-  const double* xs = in_x.data();
   double* zs = out.data();
-  for_each_index(in_x.size(), [&](PetscInt i) { zs[i] = c * xs[i]; });
+  for_each_index(out.size(), [&](PetscInt i) { zs[i] = c; });
 }
 
 realtype dot_product(N_Vector x, N_Vector y) {
@@ -149,24 +141,26 @@ realtype max_norm(N_Vector x) {
   return largest;
 }
 
-realtype weighted_rms_norm(N_Vector x, N_Vector w) {
+// √(Σ (x_i w_i)² / n) over the entries i that `counts`, n the global length.
+template <class Counts>
+realtype weighted_rms(N_Vector x, N_Vector w, Counts counts) {
   const Input in_x(x), in_w(w);
   const double *xs = in_x.data(), *ws = in_w.data();
   const double sum = sum_in_thread_order(in_x.size(), [&](PetscInt i) {
-    const double v = xs[i] * ws[i];
+    const double v = counts(i) ? xs[i] * ws[i] : 0.0;
     return v * v;
   });
   return std::sqrt(sum / static_cast<double>(global_size(x)));
 }
 
+realtype weighted_rms_norm(N_Vector x, N_Vector w) {
+  return weighted_rms(x, w, [](PetscInt) { return true; });
+}
+
 realtype weighted_rms_norm_masked(N_Vector x, N_Vector w, N_Vector id) {
-  const Input in_x(x), in_w(w), in_id(id);
-  const double *xs = in_x.data(), *ws = in_w.data(), *ids = in_id.data();
-  const double sum = sum_in_thread_order(in_x.size(), [&](PetscInt i) {
-    const double v = ids[i] > 0.0 ? xs[i] * ws[i] : 0.0;
-    return v * v;
-  });
-  return std::sqrt(sum / static_cast<double>(global_size(x)));
+  const Input in_id(id);
+  const double* ids = in_id.data();
+  return weighted_rms(x, w, [ids](PetscInt i) { return ids[i] > 0.0; });
 }
 
 }  // namespace
