@@ -259,7 +259,8 @@ std::vector<KeySpec> build_schema() {
            "h_face: size of each contact face); the interpenetration is ~ pressure h_face / (c mu0)"),
       real("contact.penalty_smoothing", 0.25, 0.0, 100.0,
            "s: the normal penalty is smoothed (C1, quadratic) over the first s h_face / c of penetration, "
-           "i.e. below the pressure s mu0 / 2; 0 gives the plain kink (physics/contact/penalty_contact.hpp)"),
+           "i.e. below the pressure s mu0 / 2; 0 gives the plain kink (physics/contact/penalty_contact.hpp)",
+           false),
       real("contact.edge_rounding", 0.25, 1e-3, 0.999,
            "f: the rigid bevel needle's bevel-cylinder and fillet-cylinder edges are rounded with the radius "
            "min(fillet, f r) so its normal is continuous where the tissue presses on them "

@@ -1,6 +1,9 @@
 // Case files: typed keys, ranges, defaults, overrides and the echoed resolved case.
 #include <gtest/gtest.h>
 
+#include <regex>
+#include <string>
+
 #include <nlohmann/json.hpp>
 
 #include "case/case.hpp"
@@ -57,6 +60,20 @@ TEST(Case, OutOfRangeIsRejectedWithTheRange) {
   const std::string e = error_of("[needle]\nradius_mm = -0.5\n");
   EXPECT_NE(e.find("'needle.radius_mm': -0.5 is out of range (0, 100]"), std::string::npos) << e;
   EXPECT_NE(error_of("[mesh]\norder = 3\n").find("out of range [1, 2]"), std::string::npos);
+}
+
+// A key whose help gives 0 a meaning ("0 = sharp", "0 gives the plain kink") must accept 0
+// (contact.penalty_smoothing said so and rejected it: its range was (0, 100]).
+TEST(Case, ZeroIsAcceptedWhereTheHelpGivesItAMeaning) {
+  int checked = 0;
+  for (const auto& spec : needlefem::case_schema()) {
+    if (spec.type != needlefem::KeyType::Real) continue;
+    static const std::regex zero_has_a_meaning("(^|[ ;(])0 (=|gives|lets|means|keeps) ");
+    if (!std::regex_search(spec.help, zero_has_a_meaning)) continue;
+    ++checked;
+    EXPECT_EQ(error_of("", {spec.key + "=0"}), "") << spec.key;
+  }
+  EXPECT_GE(checked, 6);
 }
 
 TEST(Case, SyntaxErrorNamesLine) {
