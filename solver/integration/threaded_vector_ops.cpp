@@ -87,12 +87,6 @@ double sum_in_thread_order(PetscInt n, Term&& term) {
   return sum;
 }
 
-PetscInt global_size(N_Vector v) {
-  PetscInt n = 0;
-  VecGetSize(N_VGetVector_Petsc(v), &n);
-  return n;
-}
-
 // z_i = op(x_i, y_i).
 template <class Op>
 void elementwise(N_Vector x, N_Vector y, N_Vector z, Op op) {
@@ -141,7 +135,8 @@ realtype max_norm(N_Vector x) {
   return largest;
 }
 
-// √(Σ (x_i w_i)² / n) over the entries i that `counts`, n the global length.
+// √(Σ (x_i w_i)² / n) over the entries i that `counts`, n the length (the vector's whole: these
+// operations serve vectors on one rank only).
 template <class Counts>
 realtype weighted_rms(N_Vector x, N_Vector w, Counts counts) {
   const Input in_x(x), in_w(w);
@@ -150,7 +145,7 @@ realtype weighted_rms(N_Vector x, N_Vector w, Counts counts) {
     const double v = counts(i) ? xs[i] * ws[i] : 0.0;
     return v * v;
   });
-  return std::sqrt(sum / static_cast<double>(global_size(x)));
+  return std::sqrt(sum / static_cast<double>(in_x.size()));
 }
 
 realtype weighted_rms_norm(N_Vector x, N_Vector w) {
