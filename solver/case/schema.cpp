@@ -212,7 +212,7 @@ std::vector<KeySpec> build_schema() {
              "part of the matrix without friction's pressure coupling, half the factor and solve cost, but on most "
              "meshes that part is still indefinite at some setups and MUMPS LU takes over: default frictional case "
              "31 s on its mesh, 64-83 s on five other meshes of the tip (mesh.seed 2-6) against 32-48 s with "
-             "'exact' (README \"Speed\")"),
+             "'exact' (docs/speed.md)"),
       real("integration.newton_convergence_coefficient", 0.33, 0.0, 1.0,
            "Newton stops when its error estimate is below this fraction of the error-test tolerance "
            "(IDA's epcon). Uniaxial block at K/mu ~ 1e4: stress error 6e-3 at 0.33, 1e-4 at 0.01. The strain "

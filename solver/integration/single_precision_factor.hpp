@@ -36,7 +36,7 @@
 // enough (the solution carries a relative error of about κ × 6e-8, as the single-precision solve
 // of a double factor did), and CHOLMOD 3's numeric factorisation runs supernode after supernode
 // with threads only inside BLAS calls, most of them too small to share. Measured on the 0.4 mm
-// brain-tip Newton matrix: README "Speed".
+// brain-tip Newton matrix: docs/speed.md.
 #pragma once
 
 #include <string>

@@ -28,7 +28,7 @@
 // iteration (IDA's GMRES), not for exact ones: the solution carries a relative error of about
 // κ(S_ff) × 6e-8. Why: a solve reads the whole factor twice and is memory-bound, so half the
 // bytes take about half the time, and the factorisation's BLAS-3 runs about twice as fast in
-// single precision (0.4 mm brain-tip factor, 36.8 M entries: see README "Speed").
+// single precision (0.4 mm brain-tip factor, 36.8 M entries: see docs/speed.md).
 #pragma once
 
 #include <memory>

@@ -1,9 +1,9 @@
 // IDA's and its GMRES's vector operations on a sequential PETSc state vector, run on the OpenMP
 // threads. NVECTOR_PETSC maps them to PETSc's Vec operations, which run on one thread; on the
 // 736k-long brain-tip state (92 % of it Prony variables) they are memory-bound, and one thread
-// reads 15 GB/s where two read 28-31 GB/s (measured on the second benchmark machine, README
-// "Speed"). There, outside the residual and preconditioner callbacks, IDA and GMRES spent 16 ms
-// per GMRES iteration of the default frictional case, 23 % of its integration.
+// reads 15 GB/s where two read 28-31 GB/s (measured on the second benchmark machine,
+// docs/speed.md). There, outside the residual and preconditioner callbacks, IDA and GMRES spent
+// 16 ms per GMRES iteration of the default frictional case, 23 % of its integration.
 //
 // The operations replaced are the ones IDA and SPGMR call per Newton or GMRES iteration: linear
 // sum, constant, product, quotient, scaling, dot product, weighted RMS norm (also masked) and
