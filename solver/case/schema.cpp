@@ -184,6 +184,8 @@ std::vector<KeySpec> build_schema() {
            "IDA absolute tolerance of the displacements, m"),
       real("integration.viscous_stress_absolute_tolerance_pa", 0.1, 0.0, 1e9,
            "IDA absolute tolerance of the Prony internal (viscous) stresses, Pa"),
+      real("integration.pressure_absolute_tolerance_pa", 0.1, 0.0, 1e9,
+           "IDA absolute tolerance of the element pressures of element.formulation = \"mixed\", Pa"),
       integer("integration.max_order", 5, 1, 5, "Highest BDF order IDA may use (1 = backward Euler)"),
       real("integration.initial_step_s", 0.0, 0.0, 1e6, "First step size; 0 lets IDA choose", false),
       real("integration.max_step_s", 0.0, 0.0, 1e6, "Largest step size; 0 means unbounded", false),

@@ -268,7 +268,8 @@ nlohmann::json run_case(const Case& c, const RunOptions& options) {
       Vec atol = nullptr;
       petsc_check(VecDuplicate(integrator.state(), &atol), "VecDuplicate");
       system->absolute_tolerances(atol, c.real("integration.absolute_tolerance"),
-                                  c.real("integration.viscous_stress_absolute_tolerance_pa"));
+                                  c.real("integration.viscous_stress_absolute_tolerance_pa"),
+                                  c.real("integration.pressure_absolute_tolerance_pa"));
       integrator.set_absolute_tolerances(atol);
       VecDestroy(&atol);
     }

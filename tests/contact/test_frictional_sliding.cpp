@@ -147,6 +147,13 @@ struct DraggedSlab {
         base(unique_nodes(mesh.surface_faces.at("z_min"))) {
     system.add_surface_load(contact);
     integrator = std::make_unique<IdaIntegrator>(system, options, 0.0, PETSC_COMM_SELF);
+    // The element pressures' tolerance: what the displacements' makes of K θ over the slab.
+    Vec atol = nullptr;
+    VecDuplicate(integrator->state(), &atol);
+    system.absolute_tolerances(atol, options.absolute_tolerance, 0.0,
+                               kBulkModulus * options.absolute_tolerance / kHeight);
+    integrator->set_absolute_tolerances(atol);
+    VecDestroy(&atol);
   }
   static mechanics::DirichletConditions top_moved(const TetMesh& mesh, const mechanics::DofMap& dofs) {
     mechanics::DirichletConditions conditions;

@@ -1,5 +1,6 @@
 // Taylor test of the global Newton matrix J = ∂F/∂y + cj ∂F/∂y' including the viscous
-// internal variables and their element-wise condensation: for dy = J⁻¹ b,
+// internal variables, the mixed element's pressures and their element-wise condensation: for
+// dy = J⁻¹ b,
 //   ||F(y + h dy, y' + cj h dy) - F(y, y') - h b|| = O(h²).
 #include <gtest/gtest.h>
 
@@ -30,9 +31,10 @@ double taylor_slope(const std::string& formulation, int order) {
   MechanicsSystem& system = *problem.system;
   const PetscInt nu = system.displacement_dofs(), n = system.local_size();
   EXPECT_GT(system.viscous_dofs(), 0);
+  EXPECT_EQ(system.pressure_dofs() > 0, formulation == "mixed");
   const double t = 3e-7, cj = 4.0;  // moderate cj: viscous and elastic blocks both matter
   fill_random(problem.y, 2e-5, 0, nu, 1);      // displacements up to 20 µm on a 1 mm block
-  fill_random(problem.y, 300.0, nu, n, 2);     // Q up to 300 Pa
+  fill_random(problem.y, 300.0, nu, n, 2);     // Q and the element pressures up to 300 Pa
   fill_random(problem.ydot, 1e-4, 0, n, 3);
   Vec b, dy, base, shifted_y, shifted_ydot, value;
   VecDuplicate(problem.y, &b);

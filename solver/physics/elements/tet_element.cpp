@@ -179,7 +179,7 @@ double TetElementKernel::condensed_tangent_scale(double cj) const {
 
 ElementResult TetElementKernel::evaluate(const ElementGeometry& geometry, const double* displacement,
                                          const double* viscous, bool with_tangent,
-                                         double material_tangent_scale) const {
+                                         double material_tangent_scale, const double* given_pressure) const {
   const int n = geometry.nodes, dofs = 3 * n, points = geometry.points;
   ElementResult result;
   if (dofs > kMaxElementDofs || points > kMaxElementPoints)
@@ -325,7 +325,11 @@ ElementResult TetElementKernel::evaluate(const ElementGeometry& geometry, const 
   const auto& volumetric = tissue()->volumetric;
   if (mixed) {
     const double theta = current_volume / geometry.volume;
-    const double p = volumetric.pressure(theta);
+    result.volume_ratio = theta;
+    result.volume_pressure = volumetric.pressure(theta);
+    result.volume_gradient = volume_gradient;
+    result.pressure_stiffness = volumetric.pressure_derivative() / geometry.volume;
+    const double p = given_pressure ? *given_pressure : result.volume_pressure;
     result.pressure = p;
     result.energy += geometry.volume * volumetric.energy(theta);
     for (int c = 0; c < dofs; ++c) r[c] += p * volume_gradient[c];

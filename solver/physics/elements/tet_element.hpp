@@ -22,6 +22,10 @@
 //   This is the tetrahedral analogue of Abaqus C3D10H (hybrid, constant pressure) and is free of
 //   volumetric locking on TET10 up to incompressibility (one constraint per element against 30
 //   displacement dofs); on TET4 it is the displacement element (1 quadrature point).
+//   The pressure may also be given (`given_pressure`, the two-field u-p form: p_e an unknown of
+//   its own with the equation p_e = U'(θ), mechanics/mechanics_system.hpp): the residual and the
+//   tangent's p ∂²v_e/∂u² term then use the given p, and ElementResult reports θ, U'(θ), ∂v_e/∂u
+//   and U''(θ)/V_e for that equation.
 //
 // Residual (r_a = ∂Π_e/∂u_a for the elastic part; the Q_i enter through S):
 //   r = Σ_q w_q B_qᵀ S_iso,v(q) + volumetric part,
@@ -92,6 +96,12 @@ struct ElementResult {
   std::array<PointResponse, kMaxElementPoints> points{};  // the first geometry.points
   double pressure = 0.0;            // mixed: U'(θ); displacement: volume average of U'(J)
   double energy = 0.0;              // elastic energy of the element (instantaneous, Q not counted)
+  // Mixed form only: θ = v_e/V_e, U'(θ), ∂v_e/∂u (3n) and U''(θ)/V_e, for an element pressure
+  // that is an unknown of its own.
+  double volume_ratio = 1.0;
+  double volume_pressure = 0.0;
+  std::array<double, kMaxElementDofs> volume_gradient{};
+  double pressure_stiffness = 0.0;
 };
 
 class TetElementKernel {
@@ -107,9 +117,11 @@ class TetElementKernel {
   // 1 - Σ g_i/(1 + cj τ_i): the factor of D⁰ in the Newton matrix with Q condensed (cj = +inf: 1).
   double condensed_tangent_scale(double cj) const;
 
-  // displacement: 3n values; viscous: points x terms x 6 Voigt Q values, or nullptr for Q = 0.
+  // displacement: 3n values; viscous: points x terms x 6 Voigt Q values, or nullptr for Q = 0;
+  // given_pressure: the mixed element's p, or nullptr for p = U'(θ).
   ElementResult evaluate(const ElementGeometry& geometry, const double* displacement, const double* viscous,
-                         bool with_tangent, double material_tangent_scale = 1.0) const;
+                         bool with_tangent, double material_tangent_scale = 1.0,
+                         const double* given_pressure = nullptr) const;
 
  private:
   const material::PolynomialTissue* tissue() const {

@@ -3,8 +3,9 @@
 //
 //   Cauchy stress      σ = J⁻¹ F S Fᵀ, J = det F, with the total second Piola-Kirchhoff stress
 //                      S = S⁰_iso - Σ_i Q_i + J p C⁻¹  (physics/elements/tet_element.hpp), so
-//                      σ = J⁻¹ F (S⁰_iso - Σ Q_i) Fᵀ + p I; p = U'(θ) (mixed element: the
-//                      element's condensed pressure; displacement element: U'(J) at the point).
+//                      σ = J⁻¹ F (S⁰_iso - Σ Q_i) Fᵀ + p I (mixed element: the element's
+//                      pressure unknown, U'(θ) at convergence; displacement element: U'(J) at
+//                      the point).
 //                      Laws without the split give σ = J⁻¹ P Fᵀ from their P(F).
 //   von Mises          σ_vM = sqrt(3/2 s:s), s = σ - tr(σ)/3 I.
 //   pressure           -tr(σ)/3 (positive in compression).

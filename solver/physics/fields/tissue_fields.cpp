@@ -87,7 +87,8 @@ TissueFields TissueFieldEvaluator::evaluate(Vec y, Vec ydot) const {
       }
     const double* viscous = prony_terms ? state.data() + system_.viscous_offset(k) : nullptr;
     const auto& geometry = system_.geometry(k);
-    const elements::ElementResult result = system_.kernel().evaluate(geometry, u_e.data(), viscous, false);
+    const double* pressure = system_.pressure_dofs() ? state.data() + system_.pressure_offset() + k : nullptr;
+    const elements::ElementResult result = system_.kernel().evaluate(geometry, u_e.data(), viscous, false, 1.0, pressure);
     if (result.inverted) throw std::runtime_error("output fields: inverted tissue element " + std::to_string(e));
 
     Mat3d average_stress;

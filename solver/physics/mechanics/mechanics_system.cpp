@@ -81,6 +81,7 @@ MechanicsSystem::MechanicsSystem(const TetMesh& mesh, const material::Material& 
   }
   const int points = static_cast<int>(elements::element_quadrature(n).size());
   viscous_per_element_ = static_cast<PetscInt>(points) * kernel_.prony_terms() * elements::kVoigt;
+  pressure_unknowns_ = formulation == elements::Formulation::mean_dilatation;
   prescribed_.assign(dofs_.dof_count, 0);
   for (const auto& d : conditions_.dofs) prescribed_[d.dof] = 1;
 
@@ -177,13 +178,16 @@ void MechanicsSystem::initial_state(double t0, Vec y, Vec ydot) {
 void MechanicsSystem::differential_mask(Vec id) {
   WriteArray mask(id);
   std::fill(mask.data(), mask.data() + displacement_dofs(), 0.0);
-  std::fill(mask.data() + displacement_dofs(), mask.data() + local_size(), 1.0);
+  std::fill(mask.data() + displacement_dofs(), mask.data() + pressure_offset(), 1.0);
+  std::fill(mask.data() + pressure_offset(), mask.data() + local_size(), 0.0);
 }
 
-void MechanicsSystem::absolute_tolerances(Vec atol, double displacement_m, double viscous_stress_pa) const {
+void MechanicsSystem::absolute_tolerances(Vec atol, double displacement_m, double viscous_stress_pa,
+                                          double pressure_pa) const {
   WriteArray values(atol);
   std::fill(values.data(), values.data() + displacement_dofs(), displacement_m);
-  std::fill(values.data() + displacement_dofs(), values.data() + local_size(), viscous_stress_pa);
+  std::fill(values.data() + displacement_dofs(), values.data() + pressure_offset(), viscous_stress_pa);
+  std::fill(values.data() + pressure_offset(), values.data() + local_size(), pressure_pa);
 }
 
 void MechanicsSystem::gather_displacement(const double* y, std::size_t tissue_element, double* u_e) const {
@@ -204,7 +208,8 @@ bool MechanicsSystem::assemble_internal(const double* y, const double* ydot, dou
     std::array<double, elements::kMaxElementDofs> u_e{};
     gather_displacement(y, k, u_e.data());
     const double* q = terms ? y + viscous_offset(k) : nullptr;
-    const elements::ElementResult element = kernel_.evaluate(geometry_[k], u_e.data(), q, false);
+    const double* given_pressure = pressure_unknowns_ ? y + pressure_offset() + k : nullptr;
+    const elements::ElementResult element = kernel_.evaluate(geometry_[k], u_e.data(), q, false, 1.0, given_pressure);
     if (element.inverted) {
       inverted = true;
       return;
@@ -213,6 +218,7 @@ bool MechanicsSystem::assemble_internal(const double* y, const double* ydot, dou
     const int* nodes = mesh_.tet(dofs_.tissue_tets[k]);
     for (int a = 0; a < n; ++a)
       for (int c = 0; c < 3; ++c) forces[dofs_.dof(nodes[a], c)] += element.residual[3 * a + c];
+    if (f_q && pressure_unknowns_) f_q[viscous_dofs() + static_cast<PetscInt>(k)] = y[pressure_offset() + k] - element.volume_pressure;
     if (!f_q || !terms) return;
     // F_Q = Q' - (g S⁰ - Q)/τ, laid out like Q.
     const PetscInt offset = viscous_offset(k);
@@ -256,6 +262,10 @@ DaeStatus MechanicsSystem::setup_jacobian(double t, Vec y, Vec ydot, double cj) 
     const int n = mesh_.nodes_per_tet, terms = kernel_.prony_terms();
     const double scale = kernel_.condensed_tangent_scale(cj);
     if (terms) condensation_.resize(geometry_.size());
+    if (pressure_unknowns_) {
+      pressure_gradient_.resize(geometry_.size());
+      pressure_stiffness_.resize(geometry_.size());
+    }
     check(MatZeroEntries(jacobian_), "MatZeroEntries");
     std::atomic<bool> inverted = false;
     {
@@ -277,8 +287,13 @@ DaeStatus MechanicsSystem::setup_jacobian(double t, Vec y, Vec ydot, double cj) 
             std::array<double, elements::kMaxElementDofs> u_e{};
             gather_displacement(state.data(), k, u_e.data());
             const double* q = terms ? state.data() + viscous_offset(k) : nullptr;
-            batch[e] = kernel_.evaluate(geometry_[k], u_e.data(), q, true, scale);
+            const double* given_pressure = pressure_unknowns_ ? state.data() + pressure_offset() + k : nullptr;
+            batch[e] = kernel_.evaluate(geometry_[k], u_e.data(), q, true, scale, given_pressure);
             if (batch[e].inverted) inverted = true;
+            if (pressure_unknowns_) {
+              pressure_gradient_[k] = batch[e].volume_gradient;
+              pressure_stiffness_[k] = batch[e].pressure_stiffness;
+            }
           }  // implicit barrier: the batch is complete
           const auto threads = static_cast<std::size_t>(omp_get_num_threads());
           const auto thread = static_cast<std::size_t>(omp_get_thread_num());
@@ -360,24 +375,33 @@ DaeStatus MechanicsSystem::solve_jacobian(Vec b, Vec x) {
       relaxation[i] = 1.0 / (cj_ + 1.0 / prony[i].tau_s);
       rate_gain[i] = prony[i].g / prony[i].tau_s;
     }
+    // Elements with unknowns condensed out of the factored matrix.
+    const std::size_t condensed_elements = terms || pressure_unknowns_ ? geometry_.size() : 0;
     {
       ReadArray in(b);
       WriteArray rhs(rhs_);
       double* r = rhs.data();
       std::copy(in.data(), in.data() + nu, r);
-      for_each_element_summed(terms ? geometry_.size() : 0, r, nu, [&](std::size_t k, double* sums) {
-        // Σ_q w_q B_qᵀ Σ_i b_Qi / (cj + 1/τ_i).
-        std::array<elements::PointLanes, elements::kVoigt> source{};
-        for (int p = 0; p < geometry_[k].points; ++p) {
-          const double* b_q = in.data() + viscous_offset(k) + static_cast<PetscInt>(p) * terms * elements::kVoigt;
-          for (int m = 0; m < elements::kVoigt; ++m) {
-            double sum = 0.0;
-            for (int i = 0; i < terms; ++i) sum += relaxation[i] * b_q[i * elements::kVoigt + m];
-            source[m][p] = static_cast<float>(sum);
-          }
-        }
+      for_each_element_summed(condensed_elements, r, nu, [&](std::size_t k, double* sums) {
         std::array<double, elements::kMaxElementDofs> force{};
-        condensation_[k].add_stress_transpose(source, n, force.data());
+        // -a_e b_p (the pressure row gives x_p = b_p + (U''/V_e) a_eᵀ x_u).
+        if (pressure_unknowns_) {
+          const double b_p = in.data()[pressure_offset() + static_cast<PetscInt>(k)];
+          for (int c = 0; c < 3 * n; ++c) force[c] = -pressure_gradient_[k][c] * b_p;
+        }
+        // Σ_q w_q B_qᵀ Σ_i b_Qi / (cj + 1/τ_i).
+        if (terms) {
+          std::array<elements::PointLanes, elements::kVoigt> source{};
+          for (int p = 0; p < geometry_[k].points; ++p) {
+            const double* b_q = in.data() + viscous_offset(k) + static_cast<PetscInt>(p) * terms * elements::kVoigt;
+            for (int m = 0; m < elements::kVoigt; ++m) {
+              double sum = 0.0;
+              for (int i = 0; i < terms; ++i) sum += relaxation[i] * b_q[i * elements::kVoigt + m];
+              source[m][p] = static_cast<float>(sum);
+            }
+          }
+          condensation_[k].add_stress_transpose(source, n, force.data());
+        }
         const int* nodes = mesh_.tet(dofs_.tissue_tets[k]);
         for (int a = 0; a < n; ++a)
           for (int c = 0; c < 3; ++c) {
@@ -396,11 +420,17 @@ DaeStatus MechanicsSystem::solve_jacobian(Vec b, Vec x) {
     ReadArray in(b), x_u(solution_);
     WriteArray out(x);
     std::copy(x_u.data(), x_u.data() + nu, out.data());
-    const std::size_t elements = terms ? geometry_.size() : 0;
 #pragma omp parallel for schedule(static)
-    for (std::size_t k = 0; k < elements; ++k) {
+    for (std::size_t k = 0; k < condensed_elements; ++k) {
       std::array<double, elements::kMaxElementDofs> u_e{};
       gather_displacement(x_u.data(), k, u_e.data());
+      if (pressure_unknowns_) {
+        const PetscInt row = pressure_offset() + static_cast<PetscInt>(k);
+        double volume_change = 0.0;  // a_eᵀ x_u
+        for (int c = 0; c < 3 * n; ++c) volume_change += pressure_gradient_[k][c] * u_e[c];
+        out.data()[row] = in.data()[row] + pressure_stiffness_[k] * volume_change;
+      }
+      if (!terms) continue;
       const auto stress = condensation_[k].tangent_stress(u_e.data(), n);  // D⁰ B x_u, a lane per point
       for (int p = 0; p < geometry_[k].points; ++p) {
         const PetscInt offset = viscous_offset(k) + static_cast<PetscInt>(p) * terms * elements::kVoigt;

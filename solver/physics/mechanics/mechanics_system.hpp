@@ -1,27 +1,42 @@
 // Quasi-static tissue mechanics with Prony viscoelasticity as a DAE F(t, y, y') = 0 for IDA.
 //
-// State y = (u, Q): nodal displacements u (tissue dofs, dof_map.hpp) followed by the Prony
+// State y = (u, Q, p): nodal displacements u (tissue dofs, dof_map.hpp), then the Prony
 // internal variables Q_i at every quadrature point of every tissue element (element-major, then
-// point, then term, 6 Voigt components 11 22 33 23 13 12; viscous_offset()).
+// point, then term, 6 Voigt components 11 22 33 23 13 12; viscous_offset()), then, for the
+// mixed (mean-dilatation) TET10, one pressure p_e per tissue element (pressure_offset()).
 //
-//   F_u = f_int(u, Q) - f_ext                      (algebraic; f_ext = 0 in these scenes)
+//   F_u = f_int(u, Q, p) - f_ext                   (algebraic; f_ext = 0 in these scenes)
 //       + Σ r_s(t, u, u')                          (registered surface loads, surface_load.hpp)
 //   F_u = u - ū(t)                                 on prescribed dofs (dirichlet.hpp)
 //   F_Q = Q_i' - (g_i S⁰_iso(C) - Q_i) / τ_i      (differential; Simo 1987, Holzapfel 2000 §6.10)
+//   F_p = p_e - U'(θ_e),  θ_e = v_e / V_e          (algebraic, mixed element only)
+// with f_int's volumetric part p_e a_e, a_e = ∂v_e/∂u (tet_element.hpp): the two-field u-p
+// form of the mean-dilatation element (Simo, Taylor & Pister 1985), whose solution is the one of
+// p = U'(θ) condensed inside the element, but whose Newton matrix stays a good preconditioner
+// for longer. Why: with p condensed, a Newton matrix from an earlier step is wrong by about
+// K ε against the shear stiffness μ (ε a step's strain increment; K/μ = 10⁴ for brain), so
+// every step of the brain-tip runs needed a fresh factorisation; with p an unknown, a stale
+// a_e perturbs the u-p system by ε only. Measured on the 0.4 mm brain tip (docs/speed.md):
+// cavity tied, 11 -> 2 factorisations, 46 -> 30 Newton, 89 -> 25 GMRES, integration 14.4 -> 5.2 s;
+// frictional default case 10 -> 3 factorisations, 12 -> 0 Newton failures, 72.9 -> 28.8 s.
 //
 // Newton matrix J = ∂F/∂y + c_j ∂F/∂y' in blocks (per quadrature point q, term i, weight w_q,
 // B_q and D⁰_q as in physics/elements/tet_element.hpp):
 //   J_uu = K (tangent at fixed Q),   J_uQ = -w_q B_qᵀ,
-//   J_Qu = -(g_i/τ_i) D⁰_q B_q,      J_QQ = (c_j + 1/τ_i) I   (diagonal: Q_i is local).
-// setup_jacobian condenses Q element by element (Schur complement):
-//   K̂ = J_uu - Σ J_uQ J_QQ⁻¹ J_Qu = K with D⁰ scaled by 1 - Σ_i g_i/(1 + c_j τ_i),
+//   J_Qu = -(g_i/τ_i) D⁰_q B_q,      J_QQ = (c_j + 1/τ_i) I   (diagonal: Q_i is local),
+//   J_up = a_e,   J_pu = -(U''/V_e) a_eᵀ,   J_pp = 1            (per element).
+// setup_jacobian condenses Q and p element by element (Schur complement):
+//   K̂ = J_uu - Σ J_uQ J_QQ⁻¹ J_Qu - Σ J_up J_pp⁻¹ J_pu
+//     = K with D⁰ scaled by 1 - Σ_i g_i/(1 + c_j τ_i) and the volumetric part
+//       p_e ∂²v_e/∂u² + (U''/V_e) a_e a_eᵀ (tet_element.hpp, with the state's p_e),
 // assembles K̂ into a PETSc AIJ matrix of block size 3 (prescribed rows replaced by identity
 // rows) and factors it: integration.linear_solver = "cholmod" (the default) factors the symmetric
 // part of the free block with integration/SparseCholesky and falls back to MUMPS LU for that
 // setup when it is not positive definite; "mumps" and the Krylov methods go through
 // integration/KspSolver (-nf_ksp_* options refine them). solve_jacobian back-substitutes:
-//   K̂ x_u = b_u + Σ_q w_q B_qᵀ Σ_i b_Qi / (c_j + 1/τ_i)     (free rows only),
-//   x_Qi = (b_Qi + (g_i/τ_i) D⁰_q B_q x_u) / (c_j + 1/τ_i).
+//   K̂ x_u = b_u + Σ_q w_q B_qᵀ Σ_i b_Qi / (c_j + 1/τ_i) - Σ_e a_e b_p,e     (free rows only),
+//   x_Qi = (b_Qi + (g_i/τ_i) D⁰_q B_q x_u) / (c_j + 1/τ_i),
+//   x_p,e = b_p,e + (U''/V_e) a_eᵀ x_u.
 // A non-positive det F anywhere gives DaeStatus::recoverable (IDA cuts the step); so does a
 // failed factorisation. One rank: PETSc objects live on PETSC_COMM_SELF; the element loops of residuals,
 // Newton matrices and the condensation run on the OpenMP threads (OMP_NUM_THREADS).
@@ -64,16 +79,16 @@ class MechanicsSystem final : public DaeSystem {
   static std::unique_ptr<MechanicsSystem> from_case(const Case& input, const TetMesh& mesh);
 
   // --- DaeSystem -------------------------------------------------------------------------
-  PetscInt local_size() const override { return displacement_dofs() + viscous_dofs(); }
-  // Rest at t0: u = ū(t0) on prescribed dofs and 0 elsewhere, Q = 0, y' = 0 (consistent when
+  PetscInt local_size() const override { return displacement_dofs() + viscous_dofs() + pressure_dofs(); }
+  // Rest at t0: u = ū(t0) on prescribed dofs and 0 elsewhere, Q = 0, p = 0, y' = 0 (consistent when
   // ū(t0) = 0, as in both scenes at t0 = 0).
   void initial_state(double t0, Vec y, Vec ydot) override;
-  void differential_mask(Vec id) override;
+  void differential_mask(Vec id) override;  // Q differential; u, p algebraic
   // IDA's absolute tolerances per unknown: metres for displacements, pascals for the viscous
-  // stresses Q. One scalar for both would be wrong by the ratio of their scales (~1e7 for brain
+  // stresses Q and the element pressures p. One scalar for both would be wrong by the ratio of their scales (~1e7 for brain
   // tissue: Q ~ kPa against u ~ 0.1 mm), and an atol of 1e-8 "Pa" forces steps far smaller than
   // the loading needs while Q is still near zero.
-  void absolute_tolerances(Vec atol, double displacement_m, double viscous_stress_pa) const;
+  void absolute_tolerances(Vec atol, double displacement_m, double viscous_stress_pa, double pressure_pa) const;
   DaeStatus residual(double t, Vec y, Vec ydot, Vec F) override;
   DaeStatus setup_jacobian(double t, Vec y, Vec ydot, double cj) override;
   void accept_step(double t, Vec y, Vec ydot) override;
@@ -111,6 +126,8 @@ class MechanicsSystem final : public DaeSystem {
   PetscInt viscous_offset(std::size_t tissue_element) const {
     return displacement_dofs() + viscous_per_element_ * static_cast<PetscInt>(tissue_element);
   }
+  PetscInt pressure_dofs() const { return pressure_unknowns_ ? static_cast<PetscInt>(geometry_.size()) : 0; }
+  PetscInt pressure_offset() const { return displacement_dofs() + viscous_dofs(); }
   const DofMap& dof_map() const { return dofs_; }
   const DirichletConditions& conditions() const { return conditions_; }
   const elements::TetElementKernel& kernel() const { return kernel_; }
@@ -141,6 +158,10 @@ class MechanicsSystem final : public DaeSystem {
   elements::TetElementKernel kernel_;
   std::vector<elements::ElementGeometry> geometry_;  // per tissue element
   PetscInt viscous_per_element_ = 0;
+  bool pressure_unknowns_ = false;
+  // Mixed element: a_e and U''/V_e of each element at the last setup, for solve_jacobian.
+  std::vector<std::array<double, elements::kMaxElementDofs>> pressure_gradient_;
+  std::vector<double> pressure_stiffness_;
   std::vector<char> prescribed_;  // per displacement dof
   std::vector<std::shared_ptr<SurfaceLoad>> surface_loads_;
   Rejections rejections_;
