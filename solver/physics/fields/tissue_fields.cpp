@@ -76,9 +76,17 @@ TissueFields TissueFieldEvaluator::evaluate(Vec y, Vec ydot) const {
   for (auto& cells : out.cell_maximum) cells.assign(mesh_.tet_count(), 0.0);
   for (auto& m : out.maximum) m.value = -std::numeric_limits<double>::infinity();
 
-  std::vector<double> u_e(3 * n), v_e(3 * n);
-  for (std::size_t k = 0; k < dofs.tissue_tets.size(); ++k) {
+  // The elements run on the OpenMP threads. What crosses elements (the largest value over all
+  // points with its position, the kinetic energy) is gathered afterwards in element order, so
+  // the fields do not depend on the thread count.
+  const std::size_t element_count = dofs.tissue_tets.size();
+  std::vector<std::array<int, kScalarQuantities>> largest_point(element_count);  // first point of the element's max
+  std::vector<double> element_kinetic_energy(element_count, 0.0);
+  std::vector<char> inverted(element_count, 0);
+#pragma omp parallel for schedule(static)
+  for (std::size_t k = 0; k < element_count; ++k) {
     const std::size_t e = dofs.tissue_tets[k];
+    std::array<double, elements::kMaxElementDofs> u_e{}, v_e{};
     for (int a = 0; a < n; ++a)
       for (int c = 0; c < 3; ++c) {
         const int dof = dofs.dof(mesh_.tet(e)[a], c);
@@ -89,7 +97,10 @@ TissueFields TissueFieldEvaluator::evaluate(Vec y, Vec ydot) const {
     const auto& geometry = system_.geometry(k);
     const double* pressure = system_.pressure_dofs() ? state.data() + system_.pressure_offset() + k : nullptr;
     const elements::ElementResult result = system_.kernel().evaluate(geometry, u_e.data(), viscous, false, 1.0, pressure);
-    if (result.inverted) throw std::runtime_error("output fields: inverted tissue element " + std::to_string(e));
+    if (result.inverted) {
+      inverted[k] = 1;
+      continue;
+    }
 
     Mat3d average_stress;
     for (int q = 0; q < points; ++q) {
@@ -103,7 +114,8 @@ TissueFields TissueFieldEvaluator::evaluate(Vec y, Vec ydot) const {
           velocity[i] += shape_values_[q][a] * v_e[3 * a + i];
           for (int J = 0; J < 3; ++J) F_rate(i, J) += v_e[3 * a + i] * G[3 * a + J];
         }
-      out.kinetic_energy += 0.5 * density_ * w * (velocity[0] * velocity[0] + velocity[1] * velocity[1] + velocity[2] * velocity[2]);
+      element_kinetic_energy[k] +=
+          0.5 * density_ * w * (velocity[0] * velocity[0] + velocity[1] * velocity[1] + velocity[2] * velocity[2]);
 
       if (tissue) {
         Mat3d isochoric = from_voigt(result.points[q].elastic_stress.data());
@@ -123,14 +135,23 @@ TissueFields TissueFieldEvaluator::evaluate(Vec y, Vec ydot) const {
                                                          pq.equivalent_strain_rate, pq.pressure};
       for (int s = 0; s < kScalarQuantities; ++s) {
         double& cell = out.cell_maximum[s][e];
-        cell = q == 0 ? values[s] : std::max(cell, values[s]);
-        if (values[s] > out.maximum[s].value)
-          out.maximum[s] = {values[s], point_positions_[k * points + q]};
+        if (q == 0 || values[s] > cell) {
+          cell = values[s];
+          largest_point[k][s] = q;
+        }
       }
     }
     const double vtk_order[6] = {average_stress(0, 0), average_stress(1, 1), average_stress(2, 2),
                                  average_stress(0, 1), average_stress(1, 2), average_stress(0, 2)};
     std::copy(vtk_order, vtk_order + 6, out.cauchy_stress.begin() + 6 * e);
+  }
+  for (std::size_t k = 0; k < element_count; ++k) {
+    const std::size_t e = dofs.tissue_tets[k];
+    if (inverted[k]) throw std::runtime_error("output fields: inverted tissue element " + std::to_string(e));
+    out.kinetic_energy += element_kinetic_energy[k];
+    for (int s = 0; s < kScalarQuantities; ++s)
+      if (out.cell_maximum[s][e] > out.maximum[s].value)
+        out.maximum[s] = {out.cell_maximum[s][e], point_positions_[k * points + largest_point[k][s]]};
   }
   return out;
 }
