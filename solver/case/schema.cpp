@@ -203,8 +203,9 @@ std::vector<KeySpec> build_schema() {
               "0.4 mm brain tip: 320 GMRES iterations and 19.4 s with no limit, 122 and 14 s with 5"),
       real("integration.krylov_tolerance", 0.05, 1e-6, 1.0,
            "integration.newton = krylov: GMRES stops when its residual is below this fraction of the Newton "
-           "test's tolerance (IDA's epslin). Frictional brain-tip study at 0.4 mm: 0.25 needs 3x fewer GMRES "
-           "iterations and 1.5-3x less time for the same maxima (the Table I cases set it); but IDA's Newton "
+           "test's tolerance (IDA's epslin). Frictional brain-tip study at 0.4 mm with Newton at 0.05: 0.5 (the "
+           "Table I and rate-study cases set it) ran the study in 217 s against 302 s with 0.25, the same maxima "
+           "within 1 % (docs/speed.md); but IDA's Newton "
            "test looks only at the updates, so a loose solve can end Newton early: at K/mu = 1e5 (locking "
            "beam) 0.25 gave a 4x wrong reaction, and a tied brain-tip run a strain-rate spike at its last "
            "output"),

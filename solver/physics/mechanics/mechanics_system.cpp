@@ -38,10 +38,12 @@ DaeStatus guarded(Body&& body) noexcept {
 // into its own zeroed copy of `out` (size values) except the first, which adds into `out`; the
 // copies are then added to `out` in thread order, the entries shared among the threads. Elements
 // sharing a node never race, without a colouring of the mesh, and with the static schedule every
-// entry is the same sum in the same order for a given thread count.
+// entry is the same sum in the same order for a given thread count. `copies` (of threads 1, 2,
+// ...) persist between calls: allocated afresh, each call's pages came zeroed from the kernel
+// (3 % of the default frictional case's samples in clear_page).
 template <class Body>
-void for_each_element_summed(std::size_t elements, double* out, std::size_t size, Body&& body) {
-  std::vector<std::vector<double>> copies;  // of threads 1, 2, ...
+void for_each_element_summed(std::size_t elements, double* out, std::size_t size,
+                             std::vector<std::vector<double>>& copies, Body&& body) {
 #pragma omp parallel
   {
 #pragma omp single
@@ -203,7 +205,7 @@ bool MechanicsSystem::assemble_internal(const double* y, const double* ydot, dou
   std::fill(f_u, f_u + displacement_dofs(), 0.0);
   std::atomic<bool> inverted = false;
   std::vector<double> element_energy(energy ? geometry_.size() : 0);
-  for_each_element_summed(geometry_.size(), f_u, displacement_dofs(), [&](std::size_t k, double* forces) {
+  for_each_element_summed(geometry_.size(), f_u, displacement_dofs(), thread_sums_, [&](std::size_t k, double* forces) {
     if (inverted.load(std::memory_order_relaxed)) return;
     std::array<double, elements::kMaxElementDofs> u_e{};
     gather_displacement(y, k, u_e.data());
@@ -382,7 +384,7 @@ DaeStatus MechanicsSystem::solve_jacobian(Vec b, Vec x) {
       WriteArray rhs(rhs_);
       double* r = rhs.data();
       std::copy(in.data(), in.data() + nu, r);
-      for_each_element_summed(condensed_elements, r, nu, [&](std::size_t k, double* sums) {
+      for_each_element_summed(condensed_elements, r, nu, thread_sums_, [&](std::size_t k, double* sums) {
         std::array<double, elements::kMaxElementDofs> force{};
         // -a_e b_p (the pressure row gives x_p = b_p + (U''/V_e) a_eᵀ x_u).
         if (pressure_unknowns_) {

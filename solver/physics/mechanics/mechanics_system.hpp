@@ -165,6 +165,8 @@ class MechanicsSystem final : public DaeSystem {
   std::vector<char> prescribed_;  // per displacement dof
   std::vector<std::shared_ptr<SurfaceLoad>> surface_loads_;
   Rejections rejections_;
+  // The element loops' per-thread sums (mechanics_system.cpp, for_each_element_summed).
+  mutable std::vector<std::vector<double>> thread_sums_;
 
   // Newton matrix data kept from setup_jacobian for solve_jacobian.
   double cj_ = 0.0;
