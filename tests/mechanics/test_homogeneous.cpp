@@ -100,5 +100,29 @@ TEST(MechanicsHomogeneous, PatchTestReproducesAffineField) {
     }
 }
 
+// The mixed element's pressures are unknowns of the state with the equation p_e = U'(θ_e)
+// (mechanics_system.hpp): under an affine field with a volume change every element has
+// θ = det F, so every converged p_e is U'(det F) = K (det F - 1), here 1e9 Pa x 0.06.
+TEST(MechanicsHomogeneous, ElementPressuresConvergeToTheVolumetricPressure) {
+  const double F[9] = {1.1, 0.2, -0.05, 0.1, 0.95, 0.15, -0.1, 0.05, 1.05};
+  const double det_f = F[0] * (F[4] * F[8] - F[5] * F[7]) - F[1] * (F[3] * F[8] - F[5] * F[6]) +
+                       F[2] * (F[3] * F[7] - F[4] * F[6]);
+  const double expected = 1e9 * (det_f - 1.0);  // kMiller's bulk modulus
+  Problem problem(block_case(kAllFacesDisplaced, "[1.1, 0.2, -0.05, 0.1, 0.95, 0.15, -0.1, 0.05, 1.05]", kMiller,
+                             0.3, 2, "mixed"));
+  ASSERT_TRUE(problem.advance(0.0, 1e-6, 3));
+  const MechanicsSystem& system = *problem.system;
+  ASSERT_EQ(system.pressure_dofs(), static_cast<PetscInt>(system.dof_map().tissue_tets.size()));
+  const PetscScalar* y = nullptr;
+  VecGetArrayRead(problem.y, &y);
+  double worst = 0.0;
+  for (PetscInt k = 0; k < system.pressure_dofs(); ++k)
+    worst = std::max(worst, std::abs(y[system.pressure_offset() + k] / expected - 1.0));
+  VecRestoreArrayRead(problem.y, &y);
+  std::printf("element pressures: %d elements, expected %.6e Pa, largest relative error %.2e\n",
+              static_cast<int>(system.pressure_dofs()), expected, worst);
+  EXPECT_LT(worst, 1e-8);
+}
+
 }  // namespace
 }  // namespace needlefem::mechanics::testing
