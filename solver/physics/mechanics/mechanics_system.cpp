@@ -211,7 +211,8 @@ bool MechanicsSystem::assemble_internal(const double* y, const double* ydot, dou
     gather_displacement(y, k, u_e.data());
     const double* q = terms ? y + viscous_offset(k) : nullptr;
     const double* given_pressure = pressure_unknowns_ ? y + pressure_offset() + k : nullptr;
-    const elements::ElementResult element = kernel_.evaluate(geometry_[k], u_e.data(), q, false, 1.0, given_pressure);
+    const elements::ElementResult element =
+        kernel_.evaluate(geometry_[k], u_e.data(), q, false, 1.0, given_pressure);
     if (element.inverted) {
       inverted = true;
       return;
@@ -220,7 +221,9 @@ bool MechanicsSystem::assemble_internal(const double* y, const double* ydot, dou
     const int* nodes = mesh_.tet(dofs_.tissue_tets[k]);
     for (int a = 0; a < n; ++a)
       for (int c = 0; c < 3; ++c) forces[dofs_.dof(nodes[a], c)] += element.residual[3 * a + c];
-    if (f_q && pressure_unknowns_) f_q[viscous_dofs() + static_cast<PetscInt>(k)] = y[pressure_offset() + k] - element.volume_pressure;
+    // F_p = p - U'(θ), behind the viscous rows.
+    if (f_q && pressure_unknowns_)
+      f_q[viscous_dofs() + static_cast<PetscInt>(k)] = y[pressure_offset() + k] - element.volume_pressure;
     if (!f_q || !terms) return;
     // F_Q = Q' - (g S⁰ - Q)/τ, laid out like Q.
     const PetscInt offset = viscous_offset(k);
