@@ -208,7 +208,7 @@ ElementResult TetElementKernel::evaluate(const ElementGeometry& geometry, const 
   const bool mixed = formulation_ == Formulation::mean_dilatation;
   std::vector<double> B(with_tangent ? kVoigt * dofs : 0), DB(with_tangent ? kVoigt * dofs : 0);
   std::array<double, kMaxElementDofs> spatial_gradient{};  // n_ai = ∂N_a/∂x_i
-  std::array<double, kMaxElementDofs> volume_gradient{};   // ∂v_e/∂u (mixed)
+  std::array<double, kMaxElementDofs>& volume_gradient = result.volume_gradient;  // ∂v_e/∂u (mixed)
   std::vector<double> volume_hessian(mixed && with_tangent ? K.size() : 0);  // ∂²v_e/∂u²
   double pressure_volume_integral = 0.0;
 
@@ -325,9 +325,7 @@ ElementResult TetElementKernel::evaluate(const ElementGeometry& geometry, const 
   const auto& volumetric = tissue()->volumetric;
   if (mixed) {
     const double theta = current_volume / geometry.volume;
-    result.volume_ratio = theta;
     result.volume_pressure = volumetric.pressure(theta);
-    result.volume_gradient = volume_gradient;
     result.pressure_stiffness = volumetric.pressure_derivative() / geometry.volume;
     const double p = given_pressure ? *given_pressure : result.volume_pressure;
     result.pressure = p;

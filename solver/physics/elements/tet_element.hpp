@@ -24,7 +24,7 @@
 //   displacement dofs); on TET4 it is the displacement element (1 quadrature point).
 //   The pressure may also be given (`given_pressure`, the two-field u-p form: p_e an unknown of
 //   its own with the equation p_e = U'(θ), mechanics/mechanics_system.hpp): the residual and the
-//   tangent's p ∂²v_e/∂u² term then use the given p, and ElementResult reports θ, U'(θ), ∂v_e/∂u
+//   tangent's p ∂²v_e/∂u² term then use the given p, and ElementResult reports U'(θ), ∂v_e/∂u
 //   and U''(θ)/V_e for that equation.
 //
 // Residual (r_a = ∂Π_e/∂u_a for the elastic part; the Q_i enter through S):
@@ -96,9 +96,8 @@ struct ElementResult {
   std::array<PointResponse, kMaxElementPoints> points{};  // the first geometry.points
   double pressure = 0.0;            // mixed: U'(θ); displacement: volume average of U'(J)
   double energy = 0.0;              // elastic energy of the element (instantaneous, Q not counted)
-  // Mixed form only: θ = v_e/V_e, U'(θ), ∂v_e/∂u (3n) and U''(θ)/V_e, for an element pressure
-  // that is an unknown of its own.
-  double volume_ratio = 1.0;
+  // Mixed form only: U'(θ), ∂v_e/∂u (3n) and U''(θ)/V_e, for an element pressure that is an
+  // unknown of its own.
   double volume_pressure = 0.0;
   std::array<double, kMaxElementDofs> volume_gradient{};
   double pressure_stiffness = 0.0;

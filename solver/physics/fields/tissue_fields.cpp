@@ -95,9 +95,8 @@ TissueFields TissueFieldEvaluator::evaluate(Vec y, Vec ydot) const {
       }
     const double* viscous = prony_terms ? state.data() + system_.viscous_offset(k) : nullptr;
     const auto& geometry = system_.geometry(k);
-    const double* pressure = system_.pressure_dofs() ? state.data() + system_.pressure_offset() + k : nullptr;
     const elements::ElementResult result =
-        system_.kernel().evaluate(geometry, u_e.data(), viscous, false, 1.0, pressure);
+        system_.kernel().evaluate(geometry, u_e.data(), viscous, false, 1.0, system_.element_pressure(state.data(), k));
     if (result.inverted) {
       inverted[k] = 1;
       continue;

@@ -83,7 +83,6 @@ MechanicsSystem::MechanicsSystem(const TetMesh& mesh, const material::Material& 
   }
   const int points = static_cast<int>(elements::element_quadrature(n).size());
   viscous_per_element_ = static_cast<PetscInt>(points) * kernel_.prony_terms() * elements::kVoigt;
-  pressure_unknowns_ = formulation == elements::Formulation::mean_dilatation;
   prescribed_.assign(dofs_.dof_count, 0);
   for (const auto& d : conditions_.dofs) prescribed_[d.dof] = 1;
 
@@ -210,9 +209,8 @@ bool MechanicsSystem::assemble_internal(const double* y, const double* ydot, dou
     std::array<double, elements::kMaxElementDofs> u_e{};
     gather_displacement(y, k, u_e.data());
     const double* q = terms ? y + viscous_offset(k) : nullptr;
-    const double* given_pressure = pressure_unknowns_ ? y + pressure_offset() + k : nullptr;
     const elements::ElementResult element =
-        kernel_.evaluate(geometry_[k], u_e.data(), q, false, 1.0, given_pressure);
+        kernel_.evaluate(geometry_[k], u_e.data(), q, false, 1.0, element_pressure(y, k));
     if (element.inverted) {
       inverted = true;
       return;
@@ -222,7 +220,7 @@ bool MechanicsSystem::assemble_internal(const double* y, const double* ydot, dou
     for (int a = 0; a < n; ++a)
       for (int c = 0; c < 3; ++c) forces[dofs_.dof(nodes[a], c)] += element.residual[3 * a + c];
     // F_p = p - U'(θ), behind the viscous rows.
-    if (f_q && pressure_unknowns_)
+    if (f_q && pressure_unknowns())
       f_q[viscous_dofs() + static_cast<PetscInt>(k)] = y[pressure_offset() + k] - element.volume_pressure;
     if (!f_q || !terms) return;
     // F_Q = Q' - (g S⁰ - Q)/τ, laid out like Q.
@@ -267,7 +265,7 @@ DaeStatus MechanicsSystem::setup_jacobian(double t, Vec y, Vec ydot, double cj) 
     const int n = mesh_.nodes_per_tet, terms = kernel_.prony_terms();
     const double scale = kernel_.condensed_tangent_scale(cj);
     if (terms) condensation_.resize(geometry_.size());
-    if (pressure_unknowns_) {
+    if (pressure_unknowns()) {
       pressure_gradient_.resize(geometry_.size());
       pressure_stiffness_.resize(geometry_.size());
     }
@@ -292,10 +290,9 @@ DaeStatus MechanicsSystem::setup_jacobian(double t, Vec y, Vec ydot, double cj) 
             std::array<double, elements::kMaxElementDofs> u_e{};
             gather_displacement(state.data(), k, u_e.data());
             const double* q = terms ? state.data() + viscous_offset(k) : nullptr;
-            const double* given_pressure = pressure_unknowns_ ? state.data() + pressure_offset() + k : nullptr;
-            batch[e] = kernel_.evaluate(geometry_[k], u_e.data(), q, true, scale, given_pressure);
+            batch[e] = kernel_.evaluate(geometry_[k], u_e.data(), q, true, scale, element_pressure(state.data(), k));
             if (batch[e].inverted) inverted = true;
-            if (pressure_unknowns_) {
+            if (pressure_unknowns()) {
               pressure_gradient_[k] = batch[e].volume_gradient;
               pressure_stiffness_[k] = batch[e].pressure_stiffness;
             }
@@ -381,7 +378,7 @@ DaeStatus MechanicsSystem::solve_jacobian(Vec b, Vec x) {
       rate_gain[i] = prony[i].g / prony[i].tau_s;
     }
     // Elements with unknowns condensed out of the factored matrix.
-    const std::size_t condensed_elements = terms || pressure_unknowns_ ? geometry_.size() : 0;
+    const std::size_t condensed_elements = terms || pressure_unknowns() ? geometry_.size() : 0;
     {
       ReadArray in(b);
       WriteArray rhs(rhs_);
@@ -390,7 +387,7 @@ DaeStatus MechanicsSystem::solve_jacobian(Vec b, Vec x) {
       for_each_element_summed(condensed_elements, r, nu, thread_sums_, [&](std::size_t k, double* sums) {
         std::array<double, elements::kMaxElementDofs> force{};
         // -a_e b_p (the pressure row gives x_p = b_p + (U''/V_e) a_eᵀ x_u).
-        if (pressure_unknowns_) {
+        if (pressure_unknowns()) {
           const double b_p = in.data()[pressure_offset() + static_cast<PetscInt>(k)];
           for (int c = 0; c < 3 * n; ++c) force[c] = -pressure_gradient_[k][c] * b_p;
         }
@@ -429,7 +426,7 @@ DaeStatus MechanicsSystem::solve_jacobian(Vec b, Vec x) {
     for (std::size_t k = 0; k < condensed_elements; ++k) {
       std::array<double, elements::kMaxElementDofs> u_e{};
       gather_displacement(x_u.data(), k, u_e.data());
-      if (pressure_unknowns_) {
+      if (pressure_unknowns()) {
         const PetscInt row = pressure_offset() + static_cast<PetscInt>(k);
         double volume_change = 0.0;  // a_eᵀ x_u
         for (int c = 0; c < 3 * n; ++c) volume_change += pressure_gradient_[k][c] * u_e[c];

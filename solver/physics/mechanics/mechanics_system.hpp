@@ -85,9 +85,9 @@ class MechanicsSystem final : public DaeSystem {
   void initial_state(double t0, Vec y, Vec ydot) override;
   void differential_mask(Vec id) override;  // Q differential; u, p algebraic
   // IDA's absolute tolerances per unknown: metres for displacements, pascals for the viscous
-  // stresses Q and the element pressures p. One scalar for both would be wrong by the ratio of their scales (~1e7 for brain
-  // tissue: Q ~ kPa against u ~ 0.1 mm), and an atol of 1e-8 "Pa" forces steps far smaller than
-  // the loading needs while Q is still near zero.
+  // stresses Q and the element pressures p. One scalar for all would be wrong by the ratio of
+  // their scales (~1e7 for brain tissue: Q ~ kPa against u ~ 0.1 mm), and an atol of 1e-8 "Pa"
+  // forces steps far smaller than the loading needs while Q is still near zero.
   void absolute_tolerances(Vec atol, double displacement_m, double viscous_stress_pa, double pressure_pa) const;
   DaeStatus residual(double t, Vec y, Vec ydot, Vec F) override;
   DaeStatus setup_jacobian(double t, Vec y, Vec ydot, double cj) override;
@@ -126,8 +126,12 @@ class MechanicsSystem final : public DaeSystem {
   PetscInt viscous_offset(std::size_t tissue_element) const {
     return displacement_dofs() + viscous_per_element_ * static_cast<PetscInt>(tissue_element);
   }
-  PetscInt pressure_dofs() const { return pressure_unknowns_ ? static_cast<PetscInt>(geometry_.size()) : 0; }
+  PetscInt pressure_dofs() const { return pressure_unknowns() ? static_cast<PetscInt>(geometry_.size()) : 0; }
   PetscInt pressure_offset() const { return displacement_dofs() + viscous_dofs(); }
+  // Element k's pressure in the state y, or nullptr where the element has none (p = U'(θ)).
+  const double* element_pressure(const double* y, std::size_t tissue_element) const {
+    return pressure_unknowns() ? y + pressure_offset() + static_cast<PetscInt>(tissue_element) : nullptr;
+  }
   const DofMap& dof_map() const { return dofs_; }
   const DirichletConditions& conditions() const { return conditions_; }
   const elements::TetElementKernel& kernel() const { return kernel_; }
@@ -151,6 +155,8 @@ class MechanicsSystem final : public DaeSystem {
   // F_Q. Returns false for an inverted element.
   bool assemble_internal(const double* y, const double* ydot, double* f_u, double* f_q, double* energy) const;
   void gather_displacement(const double* y, std::size_t tissue_element, double* u_e) const;
+  // The mixed element keeps its pressures in the state.
+  bool pressure_unknowns() const { return kernel_.formulation() == elements::Formulation::mean_dilatation; }
 
   const TetMesh& mesh_;
   DofMap dofs_;
@@ -158,7 +164,6 @@ class MechanicsSystem final : public DaeSystem {
   elements::TetElementKernel kernel_;
   std::vector<elements::ElementGeometry> geometry_;  // per tissue element
   PetscInt viscous_per_element_ = 0;
-  bool pressure_unknowns_ = false;
   // Mixed element: a_e and U''/V_e of each element at the last setup, for solve_jacobian.
   std::vector<std::array<double, elements::kMaxElementDofs>> pressure_gradient_;
   std::vector<double> pressure_stiffness_;
