@@ -61,20 +61,23 @@ bool stop_address_randomisation(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   using namespace needlefem;
-  // libgomp reads OMP_WAIT_POLICY, and OpenBLAS OPENBLAS_NUM_THREADS, once, when they load. Idle
-  // threads of both spin by default and take the cores from the threads with work: OpenBLAS's
-  // after every call, even a vector operation of PETSc's. The element loops and the Cholesky
-  // factor thread with OpenMP themselves, so BLAS runs on one thread (where a double-precision
-  // factorisation's BLAS-3 calls are the work, it asks for more: blas_threads.hpp). Measured on 2 cores: tied
-  // brain-tip benchmark 42.7 s with spinning OpenMP threads against 35.9 s passive (before the
-  // single-precision factor), then 22.1 s with two OpenBLAS threads against 20.5 s with one; the
-  // default frictional case, whose MUMPS LU factorisations lose BLAS's threads, 60.3 against
-  // 56.1 s. OpenBLAS's kernels for a CPU it does not know are SSE3 ones (blas_threads.hpp).
-  // Unless the user chose them, start again with these settings.
+  // OpenBLAS reads OPENBLAS_NUM_THREADS once, when it loads. Its idle threads spin after every
+  // call, even a vector operation of PETSc's, and take the cores from the threads with work. The
+  // element loops and the Cholesky factor thread with OpenMP themselves, so BLAS runs on one
+  // thread (where a double-precision factorisation's BLAS-3 calls are the work, it asks for more:
+  // blas_threads.hpp). Measured on 2 cores: tied brain-tip benchmark 22.1 s with two OpenBLAS
+  // threads against 20.5 s with one; the default frictional case, whose MUMPS LU factorisations
+  // lose BLAS's threads, 60.3 against 56.1 s. OpenMP keeps libgomp's default wait (spin about
+  // 3 ms, then sleep): a GMRES iteration enters some 20 parallel regions (threaded vector
+  // operations, element loops, triangular solves), and with OMP_WAIT_POLICY=passive, which
+  // this once set when OpenBLAS's threads also spun, each woke its sleeping thread through the
+  // kernel: Table I r = 0.83 mm, 10 deg, 0.15 mm 26.4-27.1 s of integration passive against
+  // 23.0-24.1 s (the same 497 Newton and GMRES iterations). OpenBLAS's kernels for a CPU it
+  // does not know are SSE3 ones (blas_threads.hpp). Unless the user chose them, start again
+  // with these settings.
   bool restart = app::stop_address_randomisation(argc, argv);
   const char* blas_core = openblas_core_for_unrecognised_cpu();
-  for (const auto& [variable, value] : {std::pair{"OMP_WAIT_POLICY", "passive"}, std::pair{"OPENBLAS_NUM_THREADS", "1"},
-                                        std::pair{"OPENBLAS_CORETYPE", blas_core}})
+  for (const auto& [variable, value] : {std::pair{"OPENBLAS_NUM_THREADS", "1"}, std::pair{"OPENBLAS_CORETYPE", blas_core}})
     if (value && !std::getenv(variable)) restart = setenv(variable, value, 1) == 0 || restart;
   if (restart) execv("/proc/self/exe", argv);  // returns only on failure: then run on with the defaults
   // Everything after a bare "--" belongs to PETSc/SUNDIALS, untouched.

@@ -20,7 +20,11 @@
 // the subtrees are done. BLAS runs on one thread inside each: OpenBLAS's own threads spin
 // (sched_yield) after every call and took a third of the run's CPU time from the element loops. Solves split the same way: the forward substitution runs
 // the subtrees concurrently, each thread gathering its updates of the rows above in its own
-// vector, then the top part; the back substitution runs the top part, then the subtrees.
+// vector, then the top part; the back substitution runs the top part, then the subtrees. The top
+// part's large supernodes are shared: their diagonal blocks in panels of columns (each panel's
+// triangle on one thread, its product with the block's other rows split by rows), the rows below
+// split by rows (forward) or the block's columns (back). Its dense root separators hold 40 % of
+// the 0.4 mm brain-tip factor, which one thread streamed at half the memory bandwidth of two.
 //
 // LU: the same supernodes and tree, each holding a panel of L (its diagonal block whole) and one
 // of Uᵀ (laid out like L's). Every update has two products, L_d Uᵀ_dᵀ for L's columns and
@@ -65,6 +69,8 @@ class SinglePrecisionFactor {
   long failed_column() const { return failed_column_; }
   // Subtrees factored concurrently (0 on one thread).
   int concurrent_subtrees() const;
+  // Supernodes of the top part whose solves the threads share (0 on one thread).
+  int shared_solve_supernodes() const;
 
  private:
   // An update of supernode j by d: d's rows p1..p2-1 (offsets in its row list) lie in j's columns.
@@ -79,6 +85,10 @@ class SinglePrecisionFactor {
   // Supernodes of the top part whose work (columns × rows²) is above this are shared by the
   // threads; the barriers that sharing needs cost more than smaller ones.
   static constexpr double kSharedSupernodeWork = 1e7;
+  // The solves read each entry once, so they share supernodes by entries (columns × rows); the
+  // panel width trades the triangles' share done on one thread against the barriers.
+  static constexpr double kSharedSolveEntries = 2e5;
+  static constexpr int kSolvePanel = 128;
   // LU: a pivot below this times its column's largest entry in the diagonal block fails: it
   // would carry single precision's round-off (6e-8 of the column) at a relative 6e-2.
   static constexpr float kSmallPivot = 1e-6f;
@@ -102,6 +112,13 @@ class SinglePrecisionFactor {
   // own updates of the top part), else to y.
   void forward(int s, float* y, float* above, float* gathered) const;
   void backward(int s, float* y, float* gathered) const;  // one supernode of Lᵀ w = z
+  // The same for a supernode of the top part, called by every thread t of a team of `threads`:
+  // the diagonal block in panels of kSolvePanel columns, each panel's triangle on one thread and
+  // its product with the block's other rows split among the threads, the rows below it too.
+  class SpinBarrier;
+  void forward_shared(int s, float* y, float* gathered, int t, int threads, SpinBarrier& barrier) const;
+  void backward_shared(int s, float* y, float* gathered, int t, int threads, SpinBarrier& barrier) const;
+  bool solve_shared(int s) const;  // large enough to share in the solves
 
   // The symbolic factor (CHOLMOD's arrays): supernode s has columns super_[s]..super_[s+1]-1,
   // rows rows_[row_start_[s]..row_start_[s+1]) (its own columns first, all ascending) and its

@@ -144,6 +144,7 @@ void SparseCholesky::release() {
 }
 
 int SparseCholesky::concurrent_subtrees() const { return single_ ? single_->concurrent_subtrees() : 0; }
+int SparseCholesky::shared_solve_supernodes() const { return single_ ? single_->shared_solve_supernodes() : 0; }
 
 double SparseCholesky::factor_entries() const { return factor_ ? common_->lnz : 0.0; }
 

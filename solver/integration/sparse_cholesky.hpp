@@ -74,6 +74,8 @@ class SparseCholesky {
   // Precision::single_precision: subtrees of the elimination tree factored concurrently by
   // the OpenMP threads (0 on one thread).
   int concurrent_subtrees() const;
+  // Single precision: supernodes whose solves the threads share (0 on one thread).
+  int shared_solve_supernodes() const;
   // Entries of the last factor L (lower triangle with diagonal).
   double factor_entries() const;
   const std::string& last_failure() const { return last_failure_; }

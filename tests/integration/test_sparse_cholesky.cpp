@@ -164,10 +164,11 @@ TEST(SparseCholesky, SinglePrecisionSolveAgreesToSinglePrecision) {
   MatDestroy(&A);
 }
 
-// A 3-D matrix large enough for many supernodes: the single-precision factor (one thread, then
-// two threads with concurrent subtrees) against CHOLMOD's double-precision one.
+// A 3-D matrix large enough for many supernodes and for root separators whose solves two threads
+// share: the single-precision factor (one thread, then two threads with concurrent subtrees)
+// against CHOLMOD's double-precision one.
 TEST(SparseCholesky, SinglePrecisionFactorOnOneAndTwoThreadsAgreesWithDouble) {
-  constexpr PetscInt kCubeSide = 16;
+  constexpr PetscInt kCubeSide = 22;
   Mat A = cube_matrix(kCubeSide);
   const std::vector<char> prescribed = prescribe_rows(A);
   Vec b = right_hand_side(rows_of(A));
@@ -183,11 +184,13 @@ TEST(SparseCholesky, SinglePrecisionFactorOnOneAndTwoThreadsAgreesWithDouble) {
     ASSERT_TRUE(single.factor(A)) << single.last_failure();  // refactoring starts from zero again
     solutions.push_back(cholesky_solve(single, b));
     const double error = relative_difference(solutions.back(), reference);
-    std::printf("single-precision factor, %d thread(s), %d concurrent subtrees: |x - x_double| / |x_double| = %.2e\n",
-                threads, single.concurrent_subtrees(), error);
+    std::printf("single-precision factor, %d thread(s), %d concurrent subtrees, %d shared in the solves: "
+                "|x - x_double| / |x_double| = %.2e\n",
+                threads, single.concurrent_subtrees(), single.shared_solve_supernodes(), error);
     EXPECT_LT(error, 1e-5);
     EXPECT_GT(error, 1e-10);  // it really is single precision
     EXPECT_EQ(single.concurrent_subtrees() > 1, threads > 1);
+    EXPECT_EQ(single.shared_solve_supernodes() > 0, threads > 1);
   }
   omp_set_num_threads(threads_before);
   EXPECT_LT(relative_difference(solutions[1], solutions[0]), 1e-5);
@@ -232,7 +235,7 @@ Mat paired_cube_matrix(PetscInt side, double rotation, bool pairs_as_blocks = fa
 // unsymmetric part changes the answer by far more than the tolerance, and a symmetric matrix
 // still takes the Cholesky path.
 TEST(SparseCholesky, SinglePrecisionLuOfUnsymmetricMatricesOnOneAndTwoThreadsAgreesWithMumps) {
-  constexpr PetscInt kCubeSide = 14;
+  constexpr PetscInt kCubeSide = 16;
   const int threads_before = omp_get_max_threads();
   const auto check_lu = [&](Mat A, Mat symmetric_part, const char* name) {
     const std::vector<char> prescribed = prescribe_rows(A);
@@ -243,11 +246,13 @@ TEST(SparseCholesky, SinglePrecisionLuOfUnsymmetricMatricesOnOneAndTwoThreadsAgr
       ASSERT_TRUE(single.factor(A)) << single.last_failure();
       Vec x = cholesky_solve(single, b);
       const double error = relative_difference(x, reference);
-      std::printf("single-precision LU, %s, %d thread(s), %d concurrent subtrees: |x - x_MUMPS| / |x_MUMPS| = %.2e\n",
-                  name, threads, single.concurrent_subtrees(), error);
+      std::printf("single-precision LU, %s, %d thread(s), %d concurrent subtrees, %d shared in the solves: "
+                  "|x - x_MUMPS| / |x_MUMPS| = %.2e\n",
+                  name, threads, single.concurrent_subtrees(), single.shared_solve_supernodes(), error);
       EXPECT_LT(error, 1e-5);
       EXPECT_GT(error, 1e-10);  // single precision
       EXPECT_EQ(single.lu_factorizations(), 1);
+      EXPECT_EQ(single.shared_solve_supernodes() > 0, threads > 1);
       VecDestroy(&x);
     }
     omp_set_num_threads(threads_before);
