@@ -15,6 +15,7 @@ IdaOptions ida_options_from_case(const Case& c) {
   options.krylov_dimension = static_cast<int>(c.integer("integration.krylov_dimension"));
   options.krylov_tolerance = c.real("integration.krylov_tolerance");
   options.krylov_stale_iterations = static_cast<int>(c.integer("integration.krylov_stale_iterations"));
+  options.krylov_aged_matrix_ratio = c.real("integration.krylov_aged_matrix_ratio");
   options.newton_matrix_cj_change = c.real("integration.newton_matrix_cj_change");
   options.suppress_algebraic_error = c.flag("integration.suppress_algebraic_error");
   options.fixed_step = c.maybe_real("integration.fixed_step_s");

@@ -67,6 +67,10 @@ struct IdaOptions {
   // stagnating at the full basis: tied 0.4 mm benchmark 320 GMRES iterations with no limit,
   // 122 with 5, same maxima. 0: no limit (the case files' default is 5, schema.cpp).
   int krylov_stale_iterations = 0;
+  // A Newton matrix from an earlier step ages out (ida_integrator.cpp, StaleMatrixPolicy): the
+  // next step refactors it once a step it served needed more than this many times the GMRES
+  // iterations per Newton iteration of the step that factored it. 0: only when GMRES fails.
+  double krylov_aged_matrix_ratio = 2.0;
   // IDA refreshes the Newton matrix when cj = alpha/h has changed by more than this fraction
   // since the last setup (IDA's default 0.25). The tissue's matrix barely depends on cj (only
   // through the condensed viscous factor 1 - Σ g_i/(1 + cj τ_i), mechanics_system.hpp), so a
@@ -104,6 +108,7 @@ struct IdaCounters {
   // of newton_convergence_failures.
   long stale_matrix_failures = 0;
   long stale_matrix_refusals = 0;
+  long stale_matrix_aged = 0;    // steps whose stale matrix aged (refused by the next step)
   double last_step = 0.0;        // s
   int last_order = 0;
 };

@@ -187,6 +187,7 @@ nlohmann::json summary_json(const Case& c, const material::Material* material, c
                  {"linear_iterations", record.counters.linear_iterations},
                  {"stale_matrix_failures", record.counters.stale_matrix_failures},
                  {"stale_matrix_refusals", record.counters.stale_matrix_refusals},
+                 {"stale_matrix_aged", record.counters.stale_matrix_aged},
                  {"step_rejections", {{"inverted_element_residuals", record.rejections.inverted_residuals},
                                       {"inverted_element_jacobians", record.rejections.inverted_jacobians},
                                       {"failed_factorisations", record.rejections.failed_factorisations},
