@@ -71,8 +71,8 @@ int main(int argc, char** argv) {
   // 3 ms, then sleep): a GMRES iteration enters some 20 parallel regions (threaded vector
   // operations, element loops, triangular solves), and with OMP_WAIT_POLICY=passive, which
   // this once set when OpenBLAS's threads also spun, each woke its sleeping thread through the
-  // kernel: Table I r = 0.83 mm, 10 deg, 0.15 mm 26.4-27.1 s of integration passive against
-  // 23.0-24.1 s (the same 497 Newton and GMRES iterations). OpenBLAS's kernels for a CPU it
+  // kernel: Table I r = 0.83 mm, 10 deg, 0.15 mm 25.0-28.0 s of integration passive against
+  // 23.0-24.3 s in alternating runs (the same 497 Newton and GMRES iterations). OpenBLAS's kernels for a CPU it
   // does not know are SSE3 ones (blas_threads.hpp). Unless the user chose them, start again
   // with these settings.
   bool restart = app::stop_address_randomisation(argc, argv);

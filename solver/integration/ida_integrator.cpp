@@ -40,10 +40,10 @@ Vec petsc_vector(N_Vector v) { return N_VGetVector_Petsc(v); }
 //   iterations for nothing; isolated failures (a contact event) still leave the matrix in use.
 // - Aging: a step that served its Newton iterations from a stale matrix with more than
 //   IdaOptions::krylov_aged_matrix_ratio times the GMRES iterations per Newton iteration of the
-//   step that factored it (at least kFreshIterationsFloor) makes the next step refuse it, once. Sliding friction ages
-//   a matrix slowly: on Table I r = 0.83 mm, 20 deg, 0.45 mm the matrix of t = 0.7 ms served to
-//   the end, its steps climbing from 4-5 to 11-20 GMRES iterations per Newton iteration (580 in
-//   all, 2 factorisations), while a factorisation costs about 20 GMRES iterations.
+//   step that factored it (at least kFreshIterationsFloor) makes the next step refuse it, once.
+//   Sliding friction ages a matrix slowly: on Table I r = 0.83 mm, 20 deg, 0.45 mm the matrix of
+//   t = 0.7 ms served to the end, its steps climbing from 4-5 to 11-20 GMRES iterations per
+//   Newton iteration (580 in all, 2 factorisations), while a factorisation costs about 20.
 class StaleMatrixPolicy {
  public:
   StaleMatrixPolicy() = default;

@@ -168,10 +168,10 @@ void set_mesh_options(const Case& c) {
 // the last word.
 std::string optimise_high_order() {
   constexpr int kMoreLayers = 2;
-  std::string misses;
   double layers = 0.0;
   gmsh::option::getNumber("Mesh.HighOrderNumLayers", layers);
-  for (int extra = 0; extra <= kMoreLayers; ++extra) {
+  std::string misses, done;
+  for (int extra = 0; extra <= kMoreLayers && done.empty(); ++extra) {
     if (extra > 0) {
       gmsh::model::mesh::clear();
       gmsh::model::mesh::generate(3);
@@ -179,8 +179,7 @@ std::string optimise_high_order() {
     }
     try {
       gmsh::model::mesh::optimize("HighOrder");
-      gmsh::option::setNumber("Mesh.HighOrderNumLayers", layers);
-      return extra == 0 ? "HighOrder"
+      done = extra == 0 ? "HighOrder"
                         : fmt::format("HighOrder missed its target with {} layers ({}); regenerated, HighOrder with {}",
                                       layers + extra - 1, misses, layers + extra);
     } catch (const std::string& miss) {
@@ -188,6 +187,7 @@ std::string optimise_high_order() {
     }
   }
   gmsh::option::setNumber("Mesh.HighOrderNumLayers", layers);
+  if (!done.empty()) return done;
   gmsh::model::mesh::clear();
   gmsh::model::mesh::generate(3);
   gmsh::model::mesh::optimize("HighOrderElastic");
