@@ -176,6 +176,9 @@ std::vector<KeySpec> build_schema() {
               "METIS element partitions (MPI ranks); the mesh report compares their interface size "
               "with a naive split"),
       integer("mesh.seed", 1, 0, 1000000, "Seed of gmsh's random factor, fixed for deterministic meshes"),
+      integer("mesh.refinement_level", 0, 0, 4,
+              "Mesh refinement near the needle: each level halves every element size near the needle (its "
+              "surface and edges); `needlefem converge` runs three consecutive levels"),
 
       // --- time integration (SUNDIALS IDA) and Newton-matrix solves (PETSc KSP) -------------
       real("integration.relative_tolerance", 1e-4, 0.0, 1.0,
