@@ -302,6 +302,18 @@ std::vector<KeySpec> build_schema() {
       real("thresholds.log_strain", 0.19, 0.0, 100.0, "Limit on the max principal log strain"),
       real("thresholds.strain_rate_per_s", 10.0, 0.0, 1e9, "Limit on the max principal strain rate"),
       real("thresholds.stress_pa", 120000.0, 0.0, 1e12, "Limit on the von Mises stress"),
+      real("thresholds.critical_distance_mm", 0.25, 0.001, 10.0,
+           "Radius l of the ball over which each limited field is averaged for its mesh-objective "
+           "(critical-distance) value. 0.25 mm: a ball 0.5 mm across, far larger than brain cells "
+           "(10-20 um) and a needle edge, smaller than the needles (r >= 0.32 mm) and than the "
+           "millimetre-scale in-vivo tissue tests behind the limits (paper 001, refs. 15-16); summary.json "
+           "also gives the values at l/2 and 2 l (physics/fields/safety_metrics.hpp)"),
+      real("thresholds.percentile", 99.0, 1.0, 99.99,
+           "Percentile P of each limited field over the region near the needle: the value the hottest "
+           "(100 - P) % of that region's volume reaches"),
+      real("thresholds.region_mm", 1.0, 0.01, 100.0,
+           "The region near the needle for the percentile and the fraction above a limit: tissue within this "
+           "distance of the cavity surface (reference configuration; all tissue when there is no cavity)"),
 
       // --- magnet steering of the compliant needle (steering/, `needlefem steer`, paper 000) ----
       // The needle geometry comes from needle.neck_length_mm, neck_diameter_mm, head_length_mm

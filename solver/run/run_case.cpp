@@ -24,6 +24,7 @@
 #include "physics/mechanics/mechanics_system.hpp"
 #include "run/needle_output.hpp"
 #include "run/output_schedule.hpp"
+#include "run/safety_report.hpp"
 
 namespace needlefem::run {
 
@@ -59,18 +60,6 @@ void write_json_atomically(const std::filesystem::path& file, const nlohmann::js
   std::filesystem::rename(partial, file);
 }
 
-nlohmann::json millimetres(const Point3& x) { return {x[0] * kMmPerM, x[1] * kMmPerM, x[2] * kMmPerM}; }
-
-// The largest value seen over all output times, with when and where.
-struct MaximumOverTime {
-  double value = -std::numeric_limits<double>::infinity();
-  double time_s = 0.0;
-  Point3 position{};
-  void update(const fields::PointMaximum& m, double t) {
-    if (m.value > value) *this = {m.value, t, m.position};
-  }
-  nlohmann::json to_json() const { return {{"value", value}, {"time_s", time_s}, {"position_mm", millimetres(position)}}; }
-};
 
 // Named boundary surfaces that carry tissue dofs: the reaction-force groups.
 std::vector<std::string> reaction_surfaces(const TetMesh& mesh, const mechanics::DofMap& dofs) {
@@ -141,22 +130,8 @@ struct RunRecord {
   double mesh_s = 0.0, integration_s = 0.0, output_s = 0.0;
 };
 
-// Paper 001's design limits (thresholds.*) against the maxima over the run: von Mises stress,
-// max principal log strain and max principal strain rate.
-nlohmann::json thresholds_json(const Case& c, const RunRecord& record) {
-  const std::array<std::pair<const char*, int>, 3> limits{
-      {{"log_strain", fields::kLogStrain}, {"strain_rate_per_s", fields::kStrainRate}, {"stress_pa", fields::kVonMises}}};
-  nlohmann::json t;
-  for (const auto& [name, quantity] : limits) {
-    const double limit = c.real(std::string("thresholds.") + name);
-    const double max = record.maxima[quantity].value;
-    if (std::isfinite(max)) t[name] = {{"limit", limit}, {"max", max}, {"pass", max <= limit}};
-  }
-  return t;
-}
-
 nlohmann::json summary_json(const Case& c, const material::Material* material, const SceneModel* scene,
-                            const RunRecord& record, double wall_s) {
+                            const SafetyReport* safety, const RunRecord& record, double wall_s) {
   nlohmann::json s;
   s["case_file"] = c.origin();
   s["status"] = "completed";
@@ -170,7 +145,7 @@ nlohmann::json summary_json(const Case& c, const material::Material* material, c
     const Point3& r = record.reactions[i];
     s["reactions"][record.surfaces[i]] = {r[0], r[1], r[2]};
   }
-  s["thresholds"] = thresholds_json(c, record);
+  if (safety) s.update(safety->summary(record.maxima));
   s["reactions_note"] = "force (N) the supports exert on the tissue nodes of each named surface, at time_reached_s";
   s["energy"] = {{"elastic_j", record.elastic_energy_j}, {"max_kinetic_to_elastic_ratio", record.max_kinetic_to_elastic},
                  {"density_kg_per_m3", c.real("output.density_kg_per_m3")}};
@@ -234,6 +209,7 @@ nlohmann::json run_case(const Case& c, const RunOptions& options) {
   std::unique_ptr<SceneModel> scene;
   std::unique_ptr<material::Material> material;
   std::unique_ptr<NeedleOutput> needle;
+  std::unique_ptr<SafetyReport> safety;
   try {
     scene = std::make_unique<SceneModel>(load_scene_model(c, options.out_dir));
     require_valid_elements(*scene);
@@ -255,12 +231,14 @@ nlohmann::json run_case(const Case& c, const RunOptions& options) {
     record.displacement_dofs = system->displacement_dofs();
     record.surfaces = reaction_surfaces(mesh, system->dof_map());
     const fields::TissueFieldEvaluator evaluator(*system, mesh, *material, c.real("output.density_kg_per_m3"));
+    safety = std::make_unique<SafetyReport>(c, mesh, evaluator);
 
     const std::vector<double> times = output_times(c);
     std::vector<output::FieldSpec> specs = field_specs();
     if (needle) for (auto& spec : NeedleOutput::field_specs()) specs.push_back(std::move(spec));
     output::ResultFile file(options.out_dir / "result.h5", mesh, c.to_toml(), specs, times.size());
-    HistoryCsv history(options.out_dir / "history.csv", record.surfaces, needle ? NeedleOutput::history_header() : "");
+    HistoryCsv history(options.out_dir / "history.csv", record.surfaces,
+                       safety->history_header() + (needle ? NeedleOutput::history_header() : ""));
     std::array<std::vector<double>, kScalarQuantities> max_over_time;
     for (auto& cells : max_over_time) cells.assign(mesh.tet_count(), 0.0);
 
@@ -321,7 +299,7 @@ nlohmann::json run_case(const Case& c, const RunOptions& options) {
         for (std::size_t e = 0; e < mesh.tet_count(); ++e)
           max_over_time[q][e] = std::max(max_over_time[q][e], f.cell_maximum[q][e]);
         values.emplace_back(max_over_time[q]);
-        record.maxima[q].update(f.maximum[q], t);
+        record.maxima[q].update(f.maximum[q].value, t, f.maximum[q].position);
       }
       if (needle) {
         needle->evaluate(t, integrator.state(), integrator.state_rate());
@@ -336,8 +314,9 @@ nlohmann::json run_case(const Case& c, const RunOptions& options) {
       if (record.elastic_energy_j > 0.0)
         record.max_kinetic_to_elastic = std::max(record.max_kinetic_to_elastic, f.kinetic_energy / record.elastic_energy_j);
       record_solver_counts();
+      safety->add_time(t, f);
       history.row(t, record.counters, f, record.reactions, record.elastic_energy_j,
-                  needle ? needle->history_cells() : "");
+                  safety->history_cells() + (needle ? needle->history_cells() : ""));
       record.time_reached_s = t;
       record.output_times_written = file.completed_times();
       record.output_s += seconds_since(output_start);
@@ -346,14 +325,14 @@ nlohmann::json run_case(const Case& c, const RunOptions& options) {
     }
     file.close();
   } catch (const std::exception& e) {
-    nlohmann::json failed = summary_json(c, material.get(), scene.get(), record, seconds_since(start));
+    nlohmann::json failed = summary_json(c, material.get(), scene.get(), safety.get(), record, seconds_since(start));
     if (needle) failed.update(needle->summary());
     failed["status"] = "failed";
     failed["error"] = e.what();
     write_json_atomically(summary_file, failed);
     throw;
   }
-  nlohmann::json summary = summary_json(c, material.get(), scene.get(), record, seconds_since(start));
+  nlohmann::json summary = summary_json(c, material.get(), scene.get(), safety.get(), record, seconds_since(start));
   if (needle) summary.update(needle->summary());
   write_json_atomically(summary_file, summary);
   return summary;

@@ -127,6 +127,25 @@ std::deque<Column> table_columns(const SweepPlan& plan, const fs::path& out_dir)
     for (const auto& r : records) c.number.push_back(number_at(r.summary, nlohmann::json::json_pointer(fmt::format("/needle/{}", name))));
   }
 
+  // Mesh-objective metrics of each limit (run/safety_report.hpp) and their verdicts.
+  for (const auto& limit : kPaperLimits) {
+    for (const auto& [column, key] : {std::pair{"critical_distance_{}", "critical_distance"},
+                                      std::pair{"volume_above_{}_mm3", "volume_above_limit_mm3"},
+                                      std::pair{"percentile_{}", "percentile"}}) {
+      Column& c = add(fmt::format(fmt::runtime(column), limit.name), Kind::number);
+      const nlohmann::json::json_pointer pointer(fmt::format("/safety/{}/{}/value", limit.name, key));
+      for (const auto& r : records) c.number.push_back(number_at(r.summary, pointer));
+    }
+  }
+  for (const auto& limit : kPaperLimits) {
+    Column& c = add(fmt::format("verdict_{}", limit.name), Kind::flag);
+    const nlohmann::json::json_pointer pointer(fmt::format("/safety/{}/verdict", limit.name));
+    for (const auto& r : records) {
+      const bool has = r.status == "completed" && r.summary.contains(pointer) && r.summary.at(pointer).is_string();
+      c.flag.push_back(!has ? kUnknown : static_cast<std::int8_t>(r.summary.at(pointer).get<std::string>() == "pass"));
+    }
+  }
+
   // Threshold columns: the union of the names the completed runs report, in first-seen order.
   std::vector<std::vector<std::pair<std::string, std::int8_t>>> results;
   std::vector<std::string> names;

@@ -8,7 +8,11 @@
 // (completed | failed | pending | impossible), the maxima of the run's summary.json
 // (max.log_strain, max.strain_rate_per_s, max.von_mises_pa, max.principal_stress_pa), the
 // needle's largest axial force and torque (summary "needle", when the run reports it),
-// pass_<threshold> (1 pass, 0 fail, empty/-1 unknown) and safe (all thresholds pass), dofs,
+// the mesh-objective metrics of each limit (summary "safety", run/safety_report.hpp):
+// critical_distance_<limit>, volume_above_<limit>_mm3, percentile_<limit>, and verdict_<limit>
+// (1 pass, 0 fail, empty/-1 unknown: the critical-distance value against the limit),
+// pass_<threshold> (the point maxima, as paper 001 judged; 1 pass, 0 fail, empty/-1 unknown) and
+// safe (all those pass), dofs,
 // wall_s (the run's own wall time), time_reached_s, rules (violated geometry rules) and error.
 //
 // Thresholds: a run's summary "thresholds" when present (an object or list of entries, each a
@@ -17,7 +21,7 @@
 // von Mises stress 120 kPa.
 //
 // HDF5 layout of sweep.h5: one 1-D dataset per column at the root, named as the CSV column
-// (float64 with NaN for empty, int8 for pass_* and safe with -1 for unknown, UTF-8 strings);
+// (float64 with NaN for empty, int8 for verdict_*, pass_* and safe with -1 for unknown, UTF-8 strings);
 // root attributes "columns" (the column order), "sweep_file", "base_case" and
 // "format" = "needlefem-sweep-table".
 #pragma once

@@ -46,7 +46,10 @@ TissueFieldEvaluator::TissueFieldEvaluator(const mechanics::MechanicsSystem& sys
     tet_shape_values(n, point.xi, N.data());
     shape_values_.push_back(std::move(N));
   }
-  for (std::size_t e : system.dof_map().tissue_tets)
+  const auto& tissue_tets = system.dof_map().tissue_tets;
+  for (std::size_t k = 0; k < tissue_tets.size(); ++k)
+    for (double w : system.geometry(k).weight) point_volumes_.push_back(w);
+  for (std::size_t e : tissue_tets)
     for (const auto& N : shape_values_) {
       Point3 X{};
       for (int a = 0; a < n; ++a)
@@ -75,6 +78,7 @@ TissueFields TissueFieldEvaluator::evaluate(Vec y, Vec ydot) const {
   out.cauchy_stress.assign(6 * mesh_.tet_count(), 0.0);
   for (auto& cells : out.cell_maximum) cells.assign(mesh_.tet_count(), 0.0);
   for (auto& m : out.maximum) m.value = -std::numeric_limits<double>::infinity();
+  for (auto& values : out.point_value) values.assign(point_positions_.size(), 0.0);
 
   // The elements run on the OpenMP threads. What crosses elements (the largest value over all
   // points with its position, the kinetic energy) is gathered afterwards in element order, so
@@ -134,6 +138,7 @@ TissueFields TissueFieldEvaluator::evaluate(Vec y, Vec ydot) const {
                                                          pq.max_log_strain,  pq.max_strain_rate,
                                                          pq.equivalent_strain_rate, pq.pressure};
       for (int s = 0; s < kScalarQuantities; ++s) {
+        out.point_value[s][k * points + q] = values[s];
         double& cell = out.cell_maximum[s][e];
         if (q == 0 || values[s] > cell) {
           cell = values[s];

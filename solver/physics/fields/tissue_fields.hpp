@@ -7,6 +7,9 @@
 //                 (what safety limits are checked against; zero on non-tissue cells),
 //   maxima        per scalar quantity, the maximum over all tissue quadrature points with that
 //                 point's reference position X_q = Σ_a N_a(ξ_q) X_a,
+//   point values  every scalar quantity at every tissue quadrature point, in the order of
+//                 point_positions() and point_volumes() (for the mesh-objective safety
+//                 metrics, safety_metrics.hpp),
 //   kinetic energy  T = 1/2 ρ ∫ |u'|² dV (the quasi-static model neglects it; reported to show
 //                 it is negligible next to the elastic energy).
 #pragma once
@@ -50,6 +53,7 @@ struct TissueFields {
   std::vector<double> cauchy_stress;  // mesh tets x 6 (xx yy zz xy yz xz), volume average
   std::array<std::vector<double>, kScalarQuantities> cell_maximum;  // mesh tets each
   std::array<PointMaximum, kScalarQuantities> maximum;
+  std::array<std::vector<double>, kScalarQuantities> point_value;  // tissue quadrature points each
   double kinetic_energy = 0.0;        // J
 };
 
@@ -62,6 +66,11 @@ class TissueFieldEvaluator {
   // Throws std::runtime_error for an inverted element (the integrator never accepts one).
   TissueFields evaluate(Vec y, Vec ydot) const;
 
+  // Per tissue quadrature point (element by element): reference position (m) and reference
+  // volume w_q (quadrature weight times det J, m³).
+  const std::vector<Point3>& point_positions() const { return point_positions_; }
+  const std::vector<double>& point_volumes() const { return point_volumes_; }
+
  private:
   const mechanics::MechanicsSystem& system_;
   const TetMesh& mesh_;
@@ -69,6 +78,7 @@ class TissueFieldEvaluator {
   double density_;
   std::vector<std::vector<double>> shape_values_;  // per point: N_a(ξ_q)
   std::vector<Point3> point_positions_;            // per tissue element and point
+  std::vector<double> point_volumes_;              // per tissue element and point
 };
 
 }  // namespace needlefem::fields

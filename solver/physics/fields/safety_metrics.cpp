@@ -1,0 +1,249 @@
+#include "physics/fields/safety_metrics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <stdexcept>
+
+namespace needlefem::fields {
+
+namespace {
+
+constexpr int kVoxelsPerRadius = 4;         // lattice spacing s = ℓ/4
+constexpr int kReach = 7;                   // voxel offsets within the 27 blocks around a voxel's block
+constexpr int kWidth = 2 * kReach + 1;
+constexpr long long kKeyBias = 1LL << 20;   // lattice indices from -2^20 to 2^20
+constexpr std::size_t kChunk = 8;           // candidate blocks evaluated together on the threads
+
+bool selected(std::span<const char> mask, std::size_t q) { return mask.empty() || mask[q]; }
+
+long long floor_div(long long a, long long b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
+
+long long key_of(const std::array<long long, 3>& i) {
+  return ((i[0] + kKeyBias) << 42) | ((i[1] + kKeyBias) << 21) | (i[2] + kKeyBias);
+}
+
+int offset_index(long long i, long long j, long long k) {
+  return static_cast<int>(((i + kReach) * kWidth + (j + kReach)) * kWidth + (k + kReach));
+}
+
+}  // namespace
+
+BallAverager::BallAverager(std::span<const Point3> positions, std::span<const double> volumes, double radius_m)
+    : radius_(radius_m),
+      spacing_(radius_m / kVoxelsPerRadius),
+      positions_(positions.begin(), positions.end()),
+      volumes_(volumes.begin(), volumes.end()) {
+  static_assert(kBlock == kVoxelsPerRadius, "a block's edge must be the ball's radius");
+  if (!(radius_ > 0.0)) throw std::invalid_argument("critical distance: the ball radius must be positive");
+  if (positions.size() != volumes.size()) throw std::invalid_argument("critical distance: one volume per point is needed");
+  // Points by block, then by voxel inside the block.
+  std::unordered_map<long long, int> block_at;
+  std::vector<std::vector<std::pair<int, int>>> members;  // per block: (local voxel, point)
+  for (std::size_t q = 0; q < positions_.size(); ++q) {
+    const auto v = voxel_of(positions_[q]);
+    const std::array<long long, 3> b{floor_div(v[0], kBlock), floor_div(v[1], kBlock), floor_div(v[2], kBlock)};
+    for (long long i : b)
+      if (std::abs(i) >= kKeyBias) throw std::invalid_argument("critical distance: the ball radius is too small for the tissue's extent");
+    const auto [it, inserted] = block_at.try_emplace(key_of(b), static_cast<int>(blocks_.size()));
+    if (inserted) {
+      blocks_.push_back({b, {}, {}, {}});
+      members.emplace_back();
+    }
+    const int local = static_cast<int>(((v[0] - kBlock * b[0]) * kBlock + (v[1] - kBlock * b[1])) * kBlock +
+                                       (v[2] - kBlock * b[2]));
+    members[it->second].emplace_back(local, static_cast<int>(q));
+  }
+  for (std::size_t b = 0; b < blocks_.size(); ++b) {
+    Block& block = blocks_[b];
+    std::stable_sort(members[b].begin(), members[b].end());
+    for (const auto& [local, q] : members[b]) {
+      block.points.push_back(q);
+      ++block.first[local + 1];
+    }
+    for (int l = 0; l < kBlockVoxels; ++l) block.first[l + 1] += block.first[l];
+    int n = 0;
+    for (long long i = -1; i <= 1; ++i)
+      for (long long j = -1; j <= 1; ++j)
+        for (long long k = -1; k <= 1; ++k) {
+          const auto found = block_at.find(key_of({block.index[0] + i, block.index[1] + j, block.index[2] + k}));
+          block.neighbours[n++] = found == block_at.end() ? -1 : found->second;
+        }
+  }
+  // In lattice units the ball around a voxel's centre has radius 4: a voxel at offset o is wholly
+  // inside when its farthest corner is, outside when its nearest point is beyond 4.
+  offset_class_.assign(kWidth * kWidth * kWidth, 0);
+  const double r2 = kVoxelsPerRadius * kVoxelsPerRadius;
+  for (int i = -kReach; i <= kReach; ++i)
+    for (int j = -kReach; j <= kReach; ++j)
+      for (int k = -kReach; k <= kReach; ++k) {
+        double near = 0.0, far = 0.0;
+        for (int o : {i, j, k}) {
+          near += std::pow(std::max(0.0, std::abs(o) - 0.5), 2);
+          far += std::pow(std::abs(o) + 0.5, 2);
+        }
+        offset_class_[offset_index(i, j, k)] = far <= r2 ? 1 : near <= r2 ? 2 : 0;
+      }
+}
+
+std::array<long long, 3> BallAverager::voxel_of(const Point3& x) const {
+  return {static_cast<long long>(std::floor(x[0] / spacing_)), static_cast<long long>(std::floor(x[1] / spacing_)),
+          static_cast<long long>(std::floor(x[2] / spacing_))};
+}
+
+Point3 BallAverager::centre_of(const std::array<long long, 3>& voxel) const {
+  return {(voxel[0] + 0.5) * spacing_, (voxel[1] + 0.5) * spacing_, (voxel[2] + 0.5) * spacing_};
+}
+
+BallAverager::Sums BallAverager::accumulate(std::span<const double> field) const {
+  if (field.size() != positions_.size()) throw std::invalid_argument("critical distance: one value per point is needed");
+  Sums sums;
+  const std::size_t n = blocks_.size() * kBlockVoxels;
+  sums.weighted.assign(n, 0.0);
+  sums.volume.assign(n, 0.0);
+  sums.largest.assign(n, -std::numeric_limits<double>::infinity());
+  for (std::size_t b = 0; b < blocks_.size(); ++b)
+    for (int l = 0; l < kBlockVoxels; ++l) {
+      const std::size_t v = b * kBlockVoxels + l;
+      for (int p = blocks_[b].first[l]; p < blocks_[b].first[l + 1]; ++p) {
+        const int q = blocks_[b].points[p];
+        sums.weighted[v] += volumes_[q] * field[q];
+        sums.volume[v] += volumes_[q];
+        sums.largest[v] = std::max(sums.largest[v], field[q]);
+      }
+    }
+  return sums;
+}
+
+double BallAverager::average(const Sums& sums, std::span<const double> field, int block, int voxel) const {
+  const Block& centre_block = blocks_[block];
+  const std::array<long long, 3> centre{kBlock * centre_block.index[0] + voxel / (kBlock * kBlock),
+                                        kBlock * centre_block.index[1] + (voxel / kBlock) % kBlock,
+                                        kBlock * centre_block.index[2] + voxel % kBlock};
+  const Point3 c = centre_of(centre);
+  const double r2 = radius_ * radius_;
+  double weighted = 0.0, volume = 0.0;
+  for (int nb : centre_block.neighbours) {
+    if (nb < 0) continue;
+    const Block& other = blocks_[nb];
+    for (int l = 0; l < kBlockVoxels; ++l) {
+      if (other.first[l] == other.first[l + 1]) continue;
+      const long long i = kBlock * other.index[0] + l / (kBlock * kBlock) - centre[0];
+      const long long j = kBlock * other.index[1] + (l / kBlock) % kBlock - centre[1];
+      const long long k = kBlock * other.index[2] + l % kBlock - centre[2];
+      const unsigned char kind = offset_class_[offset_index(i, j, k)];
+      if (kind == 1) {
+        weighted += sums.weighted[std::size_t(nb) * kBlockVoxels + l];
+        volume += sums.volume[std::size_t(nb) * kBlockVoxels + l];
+      } else if (kind == 2) {
+        for (int p = other.first[l]; p < other.first[l + 1]; ++p) {
+          const int q = other.points[p];
+          const Point3& x = positions_[q];
+          const double dx = x[0] - c[0], dy = x[1] - c[1], dz = x[2] - c[2];
+          if (dx * dx + dy * dy + dz * dz > r2) continue;
+          weighted += volumes_[q] * field[q];
+          volume += volumes_[q];
+        }
+      }
+    }
+  }
+  return volume > 0.0 ? weighted / volume : 0.0;
+}
+
+LocatedValue BallAverager::average_around(const Point3& x, std::span<const double> field) const {
+  const auto v = voxel_of(x);
+  const std::array<long long, 3> b{floor_div(v[0], kBlock), floor_div(v[1], kBlock), floor_div(v[2], kBlock)};
+  for (std::size_t block = 0; block < blocks_.size(); ++block)
+    if (blocks_[block].index == b) {
+      const int local = static_cast<int>(((v[0] - kBlock * b[0]) * kBlock + (v[1] - kBlock * b[1])) * kBlock +
+                                         (v[2] - kBlock * b[2]));
+      return {average(accumulate(field), field, static_cast<int>(block), local), centre_of(v)};
+    }
+  throw std::invalid_argument("critical distance: no tissue point near the ball's centre");
+}
+
+LocatedValue BallAverager::maximum(std::span<const double> field) const {
+  const Sums sums = accumulate(field);
+  std::vector<double> block_largest(blocks_.size(), -std::numeric_limits<double>::infinity());
+  for (std::size_t b = 0; b < blocks_.size(); ++b)
+    for (int l = 0; l < kBlockVoxels; ++l) block_largest[b] = std::max(block_largest[b], sums.largest[b * kBlockVoxels + l]);
+  struct Candidate {
+    double bound;
+    int block;
+  };
+  std::vector<Candidate> candidates;
+  candidates.reserve(blocks_.size());
+  for (std::size_t b = 0; b < blocks_.size(); ++b) {
+    double bound = -std::numeric_limits<double>::infinity();
+    for (int nb : blocks_[b].neighbours)
+      if (nb >= 0) bound = std::max(bound, block_largest[nb]);
+    candidates.push_back({bound, static_cast<int>(b)});
+  }
+  // Descending bound, equal bounds in lattice order; within a chunk the best is taken in
+  // candidate and voxel order: the answer depends neither on hashing nor on threads.
+  std::sort(candidates.begin(), candidates.end(), [&](const Candidate& a, const Candidate& b) {
+    return a.bound > b.bound || (a.bound == b.bound && blocks_[a.block].index < blocks_[b.block].index);
+  });
+  double best = -std::numeric_limits<double>::infinity();
+  std::size_t best_slot = 0;  // candidate * kBlockVoxels + voxel
+  std::vector<double> values(kChunk * kBlockVoxels);
+  for (std::size_t start = 0; start < candidates.size() && candidates[start].bound >= best; start += kChunk) {
+    const std::size_t count = std::min(kChunk, candidates.size() - start);
+#pragma omp parallel for schedule(dynamic)
+    for (std::size_t slot = 0; slot < count * kBlockVoxels; ++slot) {
+      const Candidate& candidate = candidates[start + slot / kBlockVoxels];
+      const int l = static_cast<int>(slot % kBlockVoxels);
+      const Block& block = blocks_[candidate.block];
+      values[slot] = block.first[l] == block.first[l + 1] || candidate.bound < best
+                         ? -std::numeric_limits<double>::infinity()
+                         : average(sums, field, candidate.block, l);
+    }
+    for (std::size_t slot = 0; slot < count * kBlockVoxels; ++slot)
+      if (values[slot] > best) {
+        best = values[slot];
+        best_slot = start * kBlockVoxels + slot;
+      }
+  }
+  const Block& block = blocks_[candidates[best_slot / kBlockVoxels].block];
+  const int l = static_cast<int>(best_slot % kBlockVoxels);
+  return {best, centre_of({kBlock * block.index[0] + l / (kBlock * kBlock), kBlock * block.index[1] + (l / kBlock) % kBlock,
+                           kBlock * block.index[2] + l % kBlock})};
+}
+
+VolumeAbove volume_above(std::span<const double> field, std::span<const double> volumes,
+                         std::span<const Point3> positions, double limit, std::span<const char> mask) {
+  VolumeAbove out;
+  for (std::size_t q = 0; q < field.size(); ++q) {
+    if (!selected(mask, q) || !(field[q] > limit)) continue;
+    out.volume += volumes[q];
+    for (int c = 0; c < 3; ++c) out.centroid[c] += volumes[q] * positions[q][c];
+  }
+  if (out.volume > 0.0)
+    for (double& x : out.centroid) x /= out.volume;
+  return out;
+}
+
+double volume_percentile(std::span<const double> field, std::span<const double> volumes, double percent,
+                         std::span<const char> mask) {
+  if (!(percent > 0.0 && percent < 100.0)) throw std::invalid_argument("percentile: must lie in (0, 100)");
+  std::vector<std::size_t> order;
+  double region = 0.0;
+  for (std::size_t q = 0; q < field.size(); ++q)
+    if (selected(mask, q)) {
+      order.push_back(q);
+      region += volumes[q];
+    }
+  if (order.empty()) return 0.0;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return field[a] > field[b]; });
+  // The first point, in descending order, whose cumulative volume passes the hottest share.
+  const double hottest = (1.0 - percent / 100.0) * region;
+  double cumulative = 0.0;
+  for (std::size_t q : order) {
+    cumulative += volumes[q];
+    if (cumulative > hottest) return field[q];
+  }
+  return field[order.back()];
+}
+
+}  // namespace needlefem::fields

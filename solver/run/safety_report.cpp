@@ -1,0 +1,167 @@
+#include "run/safety_report.hpp"
+
+#include <cmath>
+#include <unordered_map>
+
+#include <fmt/core.h>
+
+#include "case/case.hpp"
+
+namespace needlefem::run {
+
+namespace {
+
+constexpr double kMmPerM = 1e3;
+constexpr const char* kCavity = "cavity";
+
+nlohmann::json millimetres(const Point3& x) { return {x[0] * kMmPerM, x[1] * kMmPerM, x[2] * kMmPerM}; }
+
+// Per point: within `distance` of a node of the cavity surface (the needle's imprint).
+std::vector<char> near_cavity(const TetMesh& mesh, const std::vector<Point3>& points, double distance) {
+  const auto cavity = mesh.surface_faces.find(kCavity);
+  std::vector<char> near(points.size(), 0);
+  const auto cell = [distance](const Point3& x) {
+    return std::array<long long, 3>{static_cast<long long>(std::floor(x[0] / distance)),
+                                    static_cast<long long>(std::floor(x[1] / distance)),
+                                    static_cast<long long>(std::floor(x[2] / distance))};
+  };
+  const auto key = [](long long i, long long j, long long k) {
+    return ((i + (1LL << 20)) << 42) | ((j + (1LL << 20)) << 21) | (k + (1LL << 20));
+  };
+  std::unordered_map<long long, std::vector<int>> nodes_in;
+  for (int node : cavity->second) {
+    const auto c = cell(mesh.nodes[node]);
+    auto& list = nodes_in[key(c[0], c[1], c[2])];
+    if (std::find(list.begin(), list.end(), node) == list.end()) list.push_back(node);
+  }
+  const double d2 = distance * distance;
+#pragma omp parallel for schedule(static)
+  for (std::size_t q = 0; q < points.size(); ++q) {
+    const auto c = cell(points[q]);
+    for (long long i = c[0] - 1; i <= c[0] + 1 && !near[q]; ++i)
+      for (long long j = c[1] - 1; j <= c[1] + 1 && !near[q]; ++j)
+        for (long long k = c[2] - 1; k <= c[2] + 1 && !near[q]; ++k) {
+          const auto found = nodes_in.find(key(i, j, k));
+          if (found == nodes_in.end()) continue;
+          for (int node : found->second) {
+            const Point3& x = mesh.nodes[node];
+            const double dx = x[0] - points[q][0], dy = x[1] - points[q][1], dz = x[2] - points[q][2];
+            if (dx * dx + dy * dy + dz * dz <= d2) {
+              near[q] = 1;
+              break;
+            }
+          }
+        }
+  }
+  return near;
+}
+
+}  // namespace
+
+nlohmann::json MaximumOverTime::to_json(const char* position_name) const {
+  return {{"value", value}, {"time_s", time_s}, {position_name, millimetres(position)}};
+}
+
+SafetyReport::SafetyReport(const Case& c, const TetMesh& mesh, const fields::TissueFieldEvaluator& evaluator)
+    : limits_{{"log_strain", fields::kLogStrain, c.real("thresholds.log_strain")},
+              {"strain_rate_per_s", fields::kStrainRate, c.real("thresholds.strain_rate_per_s")},
+              {"stress_pa", fields::kVonMises, c.real("thresholds.stress_pa")}},
+      radius_mm_(c.real("thresholds.critical_distance_mm")),
+      percentile_(c.real("thresholds.percentile")),
+      region_mm_(c.real("thresholds.region_mm")),
+      positions_(evaluator.point_positions()),
+      volumes_(evaluator.point_volumes()),
+      now_(limits_.size()),
+      over_time_(limits_.size()) {
+  const double radius = radius_mm_ / kMmPerM;
+  ball_ = std::make_unique<fields::BallAverager>(positions_, volumes_, radius);
+  half_ball_ = std::make_unique<fields::BallAverager>(positions_, volumes_, radius / 2);
+  double_ball_ = std::make_unique<fields::BallAverager>(positions_, volumes_, 2 * radius);
+  if (mesh.surface_faces.count(kCavity)) {
+    region_ = near_cavity(mesh, positions_, region_mm_ / kMmPerM);
+    region_description_ = fmt::format("tissue within {} mm of the cavity surface", region_mm_);
+  } else {
+    region_.assign(positions_.size(), 1);
+    region_description_ = "all tissue (the scene has no cavity)";
+  }
+  for (std::size_t q = 0; q < positions_.size(); ++q)
+    if (region_[q]) region_volume_ += volumes_[q];
+}
+
+void SafetyReport::add_time(double t, const fields::TissueFields& f) {
+  for (std::size_t i = 0; i < limits_.size(); ++i) {
+    const Limit& limit = limits_[i];
+    const std::vector<double>& values = f.point_value[limit.quantity];
+    Now& now = now_[i];
+    now.critical_distance = ball_->maximum(values);
+    now.above = fields::volume_above(values, volumes_, positions_, limit.limit);
+    const double in_region = fields::volume_above(values, volumes_, positions_, limit.limit, region_).volume;
+    now.region_fraction = region_volume_ > 0.0 ? in_region / region_volume_ : 0.0;
+    now.percentile = fields::volume_percentile(values, volumes_, percentile_, region_);
+
+    OverTime& max = over_time_[i];
+    if (now.critical_distance.value > max.critical_distance.value) max.field_at_critical_distance = values;
+    max.critical_distance.update(now.critical_distance.value, t, now.critical_distance.position);
+    max.volume_above.update(now.above.volume * std::pow(kMmPerM, 3), t, now.above.centroid);
+    max.region_fraction.update(now.region_fraction, t, {});
+    max.percentile.update(now.percentile, t, {});
+  }
+}
+
+std::string SafetyReport::history_header() const {
+  std::string header;
+  for (const Limit& limit : limits_)
+    header += fmt::format(
+        ",critical_distance_{0},critical_distance_{0}_x_mm,critical_distance_{0}_y_mm,critical_distance_{0}_z_mm,"
+        "volume_above_{0}_mm3,region_fraction_above_{0},percentile_{0}",
+        limit.name);
+  return header;
+}
+
+std::string SafetyReport::history_cells() const {
+  std::string cells;
+  for (const Now& now : now_) {
+    const Point3& x = now.critical_distance.position;
+    cells += fmt::format(",{:.9g},{:.6g},{:.6g},{:.6g},{:.9g},{:.9g},{:.9g}", now.critical_distance.value,
+                         x[0] * kMmPerM, x[1] * kMmPerM, x[2] * kMmPerM, now.above.volume * std::pow(kMmPerM, 3),
+                         now.region_fraction, now.percentile);
+  }
+  return cells;
+}
+
+nlohmann::json SafetyReport::summary(const std::array<MaximumOverTime, fields::kScalarQuantities>& point_maxima) const {
+  nlohmann::json thresholds, safety;
+  safety["settings"] = {{"critical_distance_mm", radius_mm_},
+                        {"percentile", percentile_},
+                        {"region", region_description_},
+                        {"region_volume_mm3", region_volume_ * std::pow(kMmPerM, 3)}};
+  safety["note"] = "critical_distance: the largest average over a ball of radius critical_distance_mm (reference "
+                   "configuration, tissue part only), the mesh-objective value each verdict uses; point_max: the "
+                   "largest quadrature-point value, mesh-dependent next to a needle edge; each the largest over the "
+                   "output times";
+  for (std::size_t i = 0; i < limits_.size(); ++i) {
+    const Limit& limit = limits_[i];
+    const MaximumOverTime& point = point_maxima[limit.quantity];
+    if (!std::isfinite(point.value)) continue;  // no output time completed
+    thresholds[limit.name] = {{"limit", limit.limit}, {"max", point.value}, {"pass", point.value <= limit.limit}};
+    const OverTime& max = over_time_[i];
+    const auto at_time = [&](const fields::BallAverager& ball) {
+      const fields::LocatedValue v = ball.maximum(max.field_at_critical_distance);
+      return nlohmann::json{{"value", v.value}, {"time_s", max.critical_distance.time_s},
+                            {"position_mm", millimetres(v.position)}};
+    };
+    safety[limit.name] = {
+        {"limit", limit.limit},
+        {"point_max", point.to_json()},
+        {"critical_distance", max.critical_distance.to_json()},
+        {"critical_distance_half_radius", at_time(*half_ball_)},
+        {"critical_distance_double_radius", at_time(*double_ball_)},
+        {"volume_above_limit_mm3", max.volume_above.to_json("centroid_mm")},
+        {"region_fraction_above_limit", {{"value", max.region_fraction.value}, {"time_s", max.region_fraction.time_s}}},
+        {"percentile", {{"value", max.percentile.value}, {"time_s", max.percentile.time_s}}},
+        {"verdict", max.critical_distance.value <= limit.limit ? "pass" : "fail"}};
+  }
+  return {{"thresholds", thresholds}, {"safety", safety}};
+}
+
+}  // namespace needlefem::run

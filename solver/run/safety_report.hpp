@@ -1,0 +1,88 @@
+// The safety verdict of a run: paper 001's three limits (thresholds.*: max principal log strain,
+// max principal strain rate, von Mises stress) against
+//   the point maximum      the largest value at a tissue quadrature point (mesh-dependent next
+//                          to a needle edge: kept as paper 001 reported it, labelled so),
+//   the mesh-objective metrics of physics/fields/safety_metrics.hpp:
+//     critical_distance              the largest ball average, ball radius thresholds.critical_distance_mm
+//                                    (also at half and twice that radius, at the output time of
+//                                    its maximum, to show the verdict's sensitivity to it),
+//     volume_above_limit_mm3         the tissue volume above the limit, with its centroid,
+//     region_fraction_above_limit    that volume's share of the region near the needle
+//                                    (tissue within thresholds.region_mm of the cavity surface),
+//     percentile                     the thresholds.percentile-th percentile over that region,
+// each the largest over the output times, with when (and where). The verdict of each limit is
+// the critical-distance value's: "pass" when it is at most the limit. `needlefem converge` gives
+// the same metrics their discretisation error band.
+//   history.csv   per output time: critical-distance value and position, volume above, region
+//                 fraction and percentile of each limited quantity;
+//   summary.json  "thresholds" (point maxima, as before) and "safety" (all of the above).
+#pragma once
+
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "physics/fields/safety_metrics.hpp"
+#include "physics/fields/tissue_fields.hpp"
+
+namespace needlefem {
+class Case;
+}
+
+namespace needlefem::run {
+
+// The largest value seen over all output times, with when and where.
+struct MaximumOverTime {
+  double value = -std::numeric_limits<double>::infinity();
+  double time_s = 0.0;
+  Point3 position{};
+  void update(double v, double t, const Point3& x) {
+    if (v > value) *this = {v, t, x};
+  }
+  nlohmann::json to_json(const char* position_name = "position_mm") const;
+};
+
+class SafetyReport {
+ public:
+  // `evaluator` gives the tissue's quadrature points; `mesh` its cavity surface.
+  SafetyReport(const Case& c, const TetMesh& mesh, const fields::TissueFieldEvaluator& evaluator);
+
+  // Evaluates the metrics of the fields at output time t (and keeps their maxima over time).
+  void add_time(double t, const fields::TissueFields& f);
+  std::string history_header() const;  // starts with a comma
+  std::string history_cells() const;   // of the last add_time(), starts with a comma
+  // "thresholds" and "safety" of summary.json, given the point maxima over time.
+  nlohmann::json summary(const std::array<MaximumOverTime, fields::kScalarQuantities>& point_maxima) const;
+
+ private:
+  struct Limit {
+    const char* name;        // summary key and history column stem
+    int quantity;            // fields::ScalarQuantity
+    double limit;
+  };
+  struct Now {  // one limit at the last output time
+    fields::LocatedValue critical_distance;
+    fields::VolumeAbove above;
+    double region_fraction = 0.0, percentile = 0.0;
+  };
+  struct OverTime {
+    MaximumOverTime critical_distance, volume_above, region_fraction, percentile;
+    std::vector<double> field_at_critical_distance;  // the point values at the time of its maximum
+  };
+
+  std::vector<Limit> limits_;
+  double radius_mm_, percentile_, region_mm_;
+  const std::vector<Point3>& positions_;
+  const std::vector<double>& volumes_;
+  std::vector<char> region_;  // per point: near the needle
+  double region_volume_ = 0.0;
+  std::string region_description_;
+  std::unique_ptr<fields::BallAverager> ball_, half_ball_, double_ball_;
+  std::vector<Now> now_;
+  std::vector<OverTime> over_time_;
+};
+
+}  // namespace needlefem::run
