@@ -16,12 +16,19 @@ usage: /usr/bin/python3 postprocess/sweep_figures.py COMMAND ARGS [--png OUT.png
   safety-map SWEEP_DIR [--grid G] [--x KEY] [--y KEY]
                                       safe/unsafe/failed/impossible over two swept keys (default: the
                                       first two that vary), one panel per value of the other swept keys
+  safety-steering SWEEP_DIR [--grid G]
+                                      the designer's trade-off: each limit's safety margin
+                                      1 - (critical-distance value)/limit against the largest lateral
+                                      force the tip puts on the needle (what steers a bevel), one
+                                      panel per limit, one marker per design (filled: the verdict
+                                      passes), the point-maximum margin as a faint cross
   history RUN_DIR                     time histories of one run: maxima with their limits, reactions
   all SWEEP_DIR [--out DIR] [--design-grid G] [--rate-grid G]
                                       all of the above (history of the first completed point; the
                                       safety map of the design grid) as
                                       fig4_stress_strain.png, fig5_fillet.png, fig6_strain_rate.png,
-                                      safety_map.png, history.png in DIR (default SWEEP_DIR/figures)
+                                      safety_map.png, safety_steering.png, history.png in DIR
+                                      (default SWEEP_DIR/figures)
 --grid G keeps the points of grid G (a [[grid]] name, or "main"). Default OUT: SWEEP_DIR/<figure>.png.
 """
 import argparse
@@ -281,6 +288,48 @@ def safety_map(sweep, png, x=None, y=None, grid=None):
     finish(fig, png)
 
 
+SAFETY_LIMITS = (("log_strain", "log strain"), ("strain_rate_per_s", "strain rate"), ("stress_pa", "von Mises stress"))
+
+
+def safety_steering(sweep, png, grid=None):
+    points = [i for i in sweep.indices(grid) if not math.isnan(sweep.table.get("needle_max_lateral_force_n",
+                                                                                   [math.nan] * sweep.rows)[i])]
+    fig, axes = plt.subplots(1, len(SAFETY_LIMITS), figsize=(5.2 * len(SAFETY_LIMITS), 4.6), sharey=False)
+    colours = plt.get_cmap("tab20")
+    for ax, (name, label) in zip(axes, SAFETY_LIMITS):
+        for n, i in enumerate(points):
+            summary = sweep.summary(i)
+            entry = summary.get("safety", {}).get(name)
+            if not entry:
+                continue
+            limit = entry["limit"]
+            lateral_mn = sweep.table["needle_max_lateral_force_n"][i] * 1e3
+            margin = 1 - entry["critical_distance"]["value"] / limit
+            point_margin = 1 - entry["point_max"]["value"] / limit
+            colour = colours(n % 20)
+            ax.plot(lateral_mn, margin, "o", color=colour, mfc=colour if entry["verdict"] == "pass" else "none",
+                    label=f"{tip_label(tip_of(summary))}, {motion_label(motion_of(summary))}")
+            ax.plot(lateral_mn, point_margin, "x", color=colour, alpha=0.35)
+        ax.axhline(0.0, color="k", lw=0.8)
+        ax.set_xlabel("largest lateral force on the needle [mN]")
+        ax.set_ylabel(f"{label} margin 1 - value/limit")
+        ax.set_title(f"{label}: safe above 0", fontsize=10)
+        ax.grid(True, alpha=0.3)
+    if not points:
+        no_data(axes[0], "no completed runs with needle loads")
+    handles, labels = axes[0].get_legend_handles_labels()
+    if handles:
+        fig.legend(handles, labels, loc="lower center", ncol=min(4, len(labels)), fontsize=7, frameon=False)
+        fig.subplots_adjust(bottom=0.12 + 0.035 * math.ceil(len(labels) / 4))
+    fig.suptitle("Safety beside steering: o critical-distance margin (filled = pass), x point-maximum margin",
+                 fontsize=10)
+    png = pathlib.Path(png)
+    png.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(png, dpi=130, bbox_inches="tight")
+    plt.close(fig)
+    print(f"wrote {png}")
+
+
 def history(run_dir, png):
     """Time histories of one run: maxima against their limits, reactions on the cavity."""
     run_dir = pathlib.Path(run_dir)
@@ -327,7 +376,7 @@ def history(run_dir, png):
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     commands = parser.add_subparsers(dest="command", required=True)
-    for name in ("stress-strain", "fillet", "strain-rate"):
+    for name in ("stress-strain", "fillet", "strain-rate", "safety-steering"):
         p = commands.add_parser(name)
         p.add_argument("sweep_dir")
         p.add_argument("--grid")
@@ -352,7 +401,8 @@ def main(argv=None):
         history(args.run_dir, args.png or pathlib.Path(args.run_dir) / "history.png")
         return 0
     sweep = Sweep(args.sweep_dir)
-    figures = {"stress-strain": stress_strain, "fillet": fillet, "strain-rate": strain_rate}
+    figures = {"stress-strain": stress_strain, "fillet": fillet, "strain-rate": strain_rate,
+               "safety-steering": safety_steering}
     if args.command in figures:
         figures[args.command](sweep, args.png or sweep.dir / f"{args.command}.png", args.grid)
     elif args.command == "safety-map":
@@ -363,6 +413,7 @@ def main(argv=None):
         fillet(sweep, out / "fig5_fillet.png", args.design_grid)
         strain_rate(sweep, out / "fig6_strain_rate.png", args.rate_grid)
         safety_map(sweep, out / "safety_map.png", grid=args.design_grid)
+        safety_steering(sweep, out / "safety_steering.png", args.design_grid)
         completed = sweep.indices()
         if completed:
             history(sweep.dir / sweep.table["point"][completed[0]], out / "history.png")

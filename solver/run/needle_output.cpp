@@ -62,7 +62,7 @@ std::vector<output::FieldSpec> NeedleOutput::field_specs() {
 
 std::string NeedleOutput::history_header() {
   return ",needle_force_x_n,needle_force_y_n,needle_force_z_n,needle_moment_x_n_m,needle_moment_y_n_m,"
-         "needle_moment_z_n_m,contact_area_mm2";
+         "needle_moment_z_n_m,contact_area_mm2,needle_lateral_force_xi_n,needle_lateral_force_eta_n";
 }
 
 void NeedleOutput::evaluate(double t, Vec y, Vec ydot) {
@@ -72,6 +72,11 @@ void NeedleOutput::evaluate(double t, Vec y, Vec ydot) {
   times_.push_back(t);
   axial_force_.push_back(load_.axial_force());
   torque_.push_back(load_.torque());
+  // The lateral force in the needle's own frame, turned with it by ω τ(t) about z.
+  const NeedleMotion& motion = contact_.needle().motion();
+  const double angle = motion.rotation_speed * motion.elapsed(t), c = std::cos(angle), s = std::sin(angle);
+  lateral_force_ = {c * load_.force[0] + s * load_.force[1], -s * load_.force[0] + c * load_.force[1]};
+  lateral_force_magnitude_.push_back(std::hypot(lateral_force_[0], lateral_force_[1]));
   if (!elasticity_) return;
   const auto start = std::chrono::steady_clock::now();
   const auto deflection =
@@ -85,19 +90,23 @@ void NeedleOutput::evaluate(double t, Vec y, Vec ydot) {
 
 std::string NeedleOutput::history_cells() const {
   const Point3 &f = load_.force, &m = load_.moment;
-  return fmt::format(",{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}", f[0], f[1], f[2], m[0], m[1], m[2],
-                     load_.contact_area * kMm2PerM2);
+  return fmt::format(",{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}", f[0], f[1], f[2], m[0], m[1],
+                     m[2], load_.contact_area * kMm2PerM2, lateral_force_[0], lateral_force_[1]);
 }
 
 nlohmann::json NeedleOutput::summary() const {
   nlohmann::json s;
   s["needle"] = {{"max_axial_force_n", largest_magnitude(axial_force_)},
                  {"max_torque_n_m", largest_magnitude(torque_)},
+                 {"max_lateral_force_n", largest_magnitude(lateral_force_magnitude_)},
+                 {"lateral_force_n", lateral_force_magnitude_},
                  {"time_s", times_},
                  {"axial_force_n", axial_force_},
                  {"torque_n_m", torque_},
                  {"note", "forces on the needle: axial = along +z (the insertion direction; negative = the tissue "
                           "resists insertion), torque about +z (sign opposite to the rotation = resisting it); "
+                          "lateral force: its part across the axis, what steers a bevel tip (history.csv gives it in the "
+                          "needle's frame, xi towards the bevel face's lateral normal, turning with the needle); "
                           "max_* are the largest magnitudes over the output times"}};
   const auto range = [](const contact::GapRange& g) { return nlohmann::json{g.min * kMmPerM, g.max * kMmPerM}; };
   s["contact"] = {{"initial_gap_nodes_mm", range(initial_gap_.nodes)},

@@ -3,12 +3,14 @@
 // a surface load of the mechanics system and, at every output time, reports
 //   history.csv  needle_force_{x,y,z}_n, needle_moment_{x,y,z}_n_m (on the needle, moment about
 //                the centre of its rear face; z = axial force and torque about the axis),
-//                contact_area_mm2 (reference area of the cavity in contact);
+//                contact_area_mm2 (reference area of the cavity in contact),
+//                needle_lateral_force_{xi,eta}_n (the force across the axis in the needle's own
+//                frame, turned with it: what steers a bevel tip; geometry/needle_tip.hpp's ξ, η);
 //   result.h5    node fields contact_pressure (Pa) and contact_slip (m): values at the cavity
 //                nodes, 0 at every other node (result.h5 holds tet cells only, so the cavity
 //                faces carry no cells of their own; ParaView shows them on the tissue surface);
-//   summary.json "needle": largest |axial force| and |torque| over the output times with their
-//                signed histories, and "contact": the initial gap of the cavity against the
+//   summary.json "needle": largest |axial force|, |torque| and lateral force over the output times
+//                with their histories, and "contact": the initial gap of the cavity against the
 //                needle and the penalty parameters;
 //                with needle.deflection_check, "needle"."deflection_check": the steel tip's
 //                largest elastic deflection under the contact loads over the output times
@@ -16,6 +18,7 @@
 //                (the smallest elastic slip s₀) and the needle's travel.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -68,7 +71,8 @@ class NeedleOutput {
   contact::NeedleContact::InitialGap initial_gap_;
   contact::NeedleLoad load_;
   contact::NeedleContact::SurfaceFields fields_;
-  std::vector<double> times_, axial_force_, torque_;
+  std::vector<double> times_, axial_force_, torque_, lateral_force_magnitude_;
+  std::array<double, 2> lateral_force_{};  // (ξ, η) in the needle's frame, of the last evaluate()
   std::unique_ptr<contact::NeedleElasticity> elasticity_;  // needle.deflection_check
   contact::NeedleElasticity::Deflection largest_deflection_;
   double largest_deflection_time_ = 0.0, needle_travel_m_ = 0.0, elasticity_seconds_ = 0.0;

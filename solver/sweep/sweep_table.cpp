@@ -38,7 +38,7 @@ constexpr Limit kPaperLimits[] = {{"log_strain", "log_strain", 0.19},
                                   {"stress_pa", "von_mises_pa", 120e3}};
 
 constexpr const char* kMaxima[] = {"log_strain", "strain_rate_per_s", "von_mises_pa", "principal_stress_pa"};
-constexpr const char* kNeedle[] = {"max_axial_force_n", "max_torque_n_m"};
+constexpr const char* kNeedle[] = {"max_axial_force_n", "max_torque_n_m", "max_lateral_force_n"};
 
 enum class Kind { text, number, flag };
 

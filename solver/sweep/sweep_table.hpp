@@ -7,7 +7,7 @@
 // Columns: point (directory), grids, one column per swept key (the point's value), status
 // (completed | failed | pending | impossible), the maxima of the run's summary.json
 // (max.log_strain, max.strain_rate_per_s, max.von_mises_pa, max.principal_stress_pa), the
-// needle's largest axial force and torque (summary "needle", when the run reports it),
+// needle's largest axial force, torque and lateral force (summary "needle", when the run reports it),
 // the mesh-objective metrics of each limit (summary "safety", run/safety_report.hpp):
 // critical_distance_<limit>, volume_above_<limit>_mm3, percentile_<limit>, and verdict_<limit>
 // (1 pass, 0 fail, empty/-1 unknown: the critical-distance value against the limit),

@@ -177,6 +177,25 @@ def brain_tip(args):
         check(entry["limit"] == limit and entry["max"] == summary["max"][max_key]["value"]
               and entry["pass"] == (entry["max"] <= limit),
               f"thresholds.{name}: limit {entry['limit']}, max {entry['max']:.4g}, pass {entry['pass']}")
+    lateral = [math.hypot(float(r["needle_lateral_force_xi_n"]), float(r["needle_lateral_force_eta_n"])) for r in rows]
+    for row, f_lat in zip(rows[1:], lateral[1:]):
+        f = vector(row, "needle_force", "n")
+        close(f_lat, math.hypot(f[0], f[1]), 1e-6, f"t = {row['time_s']} s: the needle-frame lateral force keeps its size")
+    close(needle["max_lateral_force_n"], max(lateral), 1e-6, "summary needle.max_lateral_force_n = max |history|")
+    # Mesh-objective metrics: a ball average cannot exceed the largest point value, nor the
+    # hottest 1 % of the region's volume; the summary keeps the largest over the output times.
+    for name, (limit, max_key) in THRESHOLDS.items():
+        entry = summary["safety"][name]
+        cd, point = entry["critical_distance"]["value"], entry["point_max"]["value"]
+        check(0 < cd <= point and entry["percentile"]["value"] <= point and entry["volume_above_limit_mm3"]["value"] >= 0,
+              f"safety.{name}: critical distance {cd:.4g} <= point max {point:.4g}, percentile "
+              f"{entry['percentile']['value']:.4g}, volume above {entry['volume_above_limit_mm3']['value']:.3g} mm^3")
+        close(cd, max(float(r[f"critical_distance_{name}"]) for r in rows), 1e-8,
+              f"safety.{name}.critical_distance = max of history's")
+        check(entry["verdict"] == ("pass" if cd <= limit else "fail"), f"safety.{name}.verdict {entry['verdict']}")
+        check(entry["critical_distance_double_radius"]["value"] <= entry["critical_distance_half_radius"]["value"],
+              f"safety.{name}: a larger ball averages lower near the needle "
+              f"({entry['critical_distance_double_radius']['value']:.4g} <= {entry['critical_distance_half_radius']['value']:.4g})")
     deflection = needle["deflection_check"]
     check(deflection["needle_dofs"] > 0 and deflection["elastic_energy_j"] > 0
           and 0 < deflection["max_deflection_m"] < deflection["smallest_elastic_slip_m"],

@@ -105,6 +105,16 @@ def check_table(out, expected_points):
             check(passed == int(float(r[column]) <= LIMITS[name]), f"{r['point']}: pass_{name} = {passed}")
         check(int(r["pass_strain_rate_per_s"]) == int(ramp > 0.1), f"{r['point']}: strain-rate limit fails only "
                                                                    "for the 15 ms ramp")
+        # The block's field is homogeneous (to the integrator's error): a ball average is the point
+        # value, and the whole block (1 mm³) is above a limit or none of it.
+        cd = float(r["critical_distance_log_strain"])
+        check(abs(cd - strain) <= 1e-5 * strain,
+              f"{r['point']}: critical-distance log strain {cd:.9f} = point max {strain:.9f}")
+        check(float(r["volume_above_log_strain_mm3"]) == 0.0 and int(r["verdict_log_strain"]) == 1,
+              f"{r['point']}: no volume above the strain limit, verdict pass")
+        above = float(r["volume_above_strain_rate_per_s_mm3"])
+        check(abs(above - (1.0 if ramp < 0.1 else 0.0)) <= 1e-9,
+              f"{r['point']}: volume above the strain-rate limit {above:.9g} mm^3 (all of the block or none)")
         check(float(r["dofs"]) > 0 and float(r["wall_s"]) > 0, f"{r['point']}: dofs and wall time recorded")
     return rows
 
@@ -199,7 +209,7 @@ def figures(args):
                             capture_output=True, text=True)
     print(result.stdout, result.stderr)
     check(result.returncode == 0, "sweep_figures.py all exits 0")
-    for name in ("fig4_stress_strain", "fig5_fillet", "fig6_strain_rate", "safety_map", "history"):
+    for name in ("fig4_stress_strain", "fig5_fillet", "fig6_strain_rate", "safety_map", "safety_steering", "history"):
         check(png_ok(out / f"{name}.png"), f"{name}.png written and not blank")
     point = read_csv(sweep_dir)[0]["point"]
     png = out / "max_log_strain.png"
