@@ -77,6 +77,7 @@ void converge_command(const ConvergeOptions& options) {
                                          failed->status, failed->error.empty() ? "no summary" : failed->error,
                                          (run.out_dir / failed->directory / "run.log").string(),
                                          (run.out_dir / "converge.json").string()));
+  for (const auto& warning : report.warnings) fmt::print("converge: warning: {}\n", warning);
   fmt::print("{}\n", convergence::verdict_line(report));
 }
 
@@ -88,7 +89,8 @@ void add_converge_command(CLI::App& app) {
       "Error band of every answer: run a case at three consecutive mesh.refinement_level values (each halves the "
       "element sizes near the needle), then per summary metric the observed order, Richardson value and grid "
       "convergence index (GCI, Celik et al. 2008); converge.csv + converge.json and a pass/fail/undecided verdict "
-      "per safety limit (decided by the critical-distance value when the run reports one)");
+      "per safety limit (decided by the critical-distance value when the run reports one). Resumes: finished "
+      "levels are not run again. Options after `--` go to every run.");
   auto options = std::make_shared<ConvergeOptions>();
   options->case_options.add_to(*command, "out/converge");
   command->add_option("--jobs", options->jobs, "Levels run at the same time")

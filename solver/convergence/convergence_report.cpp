@@ -114,6 +114,21 @@ Report build_report(std::vector<LevelRun> levels, const Settings& settings) {
     report.rows.push_back(std::move(row));
   }
 
+  std::vector<double> tets;
+  for (const auto& run : runs) tets.push_back(number(run.summary, json::json_pointer("/mesh/tets")));
+  if (std::none_of(tets.begin(), tets.end(), [](double t) { return std::isnan(t); })) {
+    if (std::all_of(tets.begin(), tets.end(), [&](double t) { return t == tets.front(); }))
+      report.warnings.push_back(fmt::format("all levels have the same mesh ({} tets): mesh.refinement_level does not "
+                                            "refine this case, so the bands hold no discretisation error", tets.front()));
+    else
+      for (std::size_t i = 1; i < n; ++i) {
+        const double ratio = std::cbrt(tets[i] / tets[i - 1]);
+        if (std::abs(ratio / settings.ratio - 1.0) > 0.25)
+          report.warnings.push_back(fmt::format("level {}: effective refinement ratio (N/N_previous)^(1/3) = {:.3g}, "
+                                                "not the nominal {:g} the orders assume", runs[i].level, ratio, settings.ratio));
+      }
+  }
+
   // Each limit's verdict from its most objective compared metric.
   std::vector<std::string> names;
   for (const auto& row : report.rows)
@@ -213,6 +228,7 @@ json report_json(const Report& report) {
   for (const auto& limit : report.limits)
     verdicts[limit.limit_name] = {{"verdict", to_string(limit.verdict)}, {"metric", limit.metric}, {"limit", limit.limit}};
   out["verdicts"] = verdicts;
+  out["warnings"] = report.warnings;
   return out;
 }
 

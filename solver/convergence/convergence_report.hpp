@@ -57,6 +57,10 @@ struct Report {
   std::vector<MetricRow> rows;
   std::vector<LimitVerdict> limits;
   Settings settings;
+  // The meshes do not refine as assumed: all levels have the same tet count (the estimates then
+  // hold no discretisation error), or a level's effective ratio (N_l / N_{l-1})^(1/3) is off the
+  // nominal r by more than 25 %.
+  std::vector<std::string> warnings;
 };
 
 // Needs at least three levels, in increasing order.

@@ -67,6 +67,9 @@ check(all(level["status"] == "completed" and level["tets"] and level["dofs"] and
           for level in report["levels"]), "each level gives tets, dofs and wall time")
 check(len(report["metrics"]) == len(rows), "converge.json and converge.csv have the same metrics")
 check(report["verdicts"].get("log_strain", {}).get("verdict") == "pass", f"log_strain verdict: {report['verdicts']}")
+if len({level["tets"] for level in report["levels"]}) == 1:
+    check(any("same mesh" in w for w in report["warnings"]) and "converge: warning: all levels have the same mesh"
+          in run.stdout, "levels with the same mesh are flagged in converge.json and on stdout")
 check(report["settings"]["refinement_ratio"] == 2.0 and report["settings"]["safety_factor"] == 1.25,
       "settings recorded")
 

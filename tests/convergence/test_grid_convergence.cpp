@@ -136,6 +136,22 @@ TEST(ConvergenceReport, CriticalDistanceDecides) {
             "metric,limit,limit_value,f_level0,f_level1,f_level2,observed_order,f_extrapolated,gci_fine,band_low,"
             "band_high,verdict,note");
   EXPECT_NE(verdict_line(report).find("converge: PASS"), std::string::npos) << verdict_line(report);
+  ASSERT_EQ(report.warnings.size(), 1u);  // every level has 1000 tets
+  EXPECT_NE(report.warnings[0].find("same mesh"), std::string::npos) << report.warnings[0];
+}
+
+// A level whose tet count grows by less than r^3 is flagged; one that grows by r^3 is not.
+TEST(ConvergenceReport, EffectiveRatioWarning) {
+  std::vector<LevelRun> levels;
+  const int tets[] = {1000, 8000, 20000};  // ratios 2 and 1.36
+  for (int l = 0; l < 3; ++l) {
+    levels.push_back({l, "", "completed", "", summary(0.1, 0, 0, false)});
+    levels.back().summary["mesh"]["tets"] = tets[l];
+  }
+  const Report report = build_report(levels);
+  ASSERT_EQ(report.warnings.size(), 1u);
+  EXPECT_EQ(report.warnings[0].rfind("level 2: effective refinement ratio", 0), 0u) << report.warnings[0];
+  EXPECT_NEAR(report_json(report)["levels"][2]["effective_ratio_to_previous"].get<double>(), std::cbrt(2.5), 1e-12);
 }
 
 // Without "safety" the point maximum decides; a failed level leaves its values empty.
