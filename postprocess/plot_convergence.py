@@ -1,7 +1,9 @@
 #!/usr/bin/python3
 """Figure of a `needlefem converge` folder: each metric compared with a safety limit against the
 relative element size near the needle (1 at the coarsest level, halving per level), with its
-Richardson value, its GCI band around the finest value and the limit line; one panel per metric.
+Richardson value, its GCI band around the finest value and the limit line (only in the legend when
+the limit is so far off that the line would flatten the values); one panel per metric, the metric
+that decides its limit's verdict marked "(decides)".
 
 Reads DIR/converge.json (written by solver/convergence/convergence_report.cpp; this script only
 draws it, the estimates are the C++ module's) and writes DIR/convergence.png.
@@ -25,6 +27,19 @@ def finite(x):
     return x is not None and math.isfinite(x)
 
 
+def draw_limit(ax, metric):
+    """The limit as a dashed line; when drawing it would squash the values more than tenfold, only
+    in the legend, saying where it lies."""
+    limit = metric["limit_value"]
+    shown = [v for v in metric["values"] + metric["band"] + [metric.get("f_extrapolated")] if finite(v)]
+    low, high = (min(shown), max(shown)) if shown else (limit, limit)
+    span = max(high - low, 0.05 * abs(high), 1e-300)
+    if max(high, limit) - min(low, limit) <= 10 * span:
+        ax.axhline(limit, color="C3", linestyle="--", label=f"limit {limit:g}")
+    else:
+        ax.plot([], [], color="C3", linestyle="--", label=f"limit {limit:g} ({'above' if limit > high else 'below'}, off scale)")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("dir", type=pathlib.Path)
@@ -41,6 +56,7 @@ def main():
     if not metrics:
         sys.exit(f"{path}: no metric compared with a limit (use --all for the others)")
 
+    deciders = {v["metric"] for v in report.get("verdicts", {}).values()}
     columns = min(3, len(metrics))
     rows = math.ceil(len(metrics) / columns)
     fig, axes = plt.subplots(rows, columns, figsize=(4.2 * columns, 3.4 * rows), squeeze=False)
@@ -58,8 +74,10 @@ def main():
         if finite(metric.get("f_extrapolated")):
             ax.plot([0.0], [metric["f_extrapolated"]], "*", color="C2", markersize=10, label="Richardson (h = 0)")
         if finite(metric.get("limit_value")) and "verdict" in metric:
-            ax.axhline(metric["limit_value"], color="C3", linestyle="--", label=f"limit {metric['limit_value']:g}")
+            draw_limit(ax, metric)
         title = metric["metric"] + (f": {metric['verdict']}" if "verdict" in metric else "")
+        if metric["metric"] in deciders:
+            title += " (decides)"
         ax.set_title(title, fontsize=9)
         ax.set_xlabel("relative element size near the needle")
         ax.set_xlim(-0.05, 1.05 * max(sizes))
