@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """`needlefem converge` end to end on a tiny homogeneous block (tests/convergence/block_short.toml):
-exit 0, a level folder with a completed summary per level, converge.csv with the documented
+exit 0, a level folder with a completed summary per level (its case with the --set override), converge.csv with the documented
 columns and one row per metric, converge.json with three levels (tets, dofs, wall time) and a
 verdict per limit; the block's max log strain ln 1.2 passes the 0.19 limit; a second start runs
 nothing (resumed) and gives the same report; postprocess/plot_convergence.py writes a PNG.
@@ -36,7 +36,7 @@ parser.add_argument("--failing-case")
 args = parser.parse_args()
 shutil.rmtree(args.out, ignore_errors=True)
 
-command = [args.exe, "converge", args.case, "--out", str(args.out), "--jobs", "2"]
+command = [args.exe, "converge", args.case, "--out", str(args.out), "--jobs", "2", "--set", "block.element_mm=1"]
 run = subprocess.run(command, capture_output=True, text=True)
 print(run.stdout, run.stderr)
 check(run.returncode == 0, f"converge exits 0 (got {run.returncode})")
@@ -48,6 +48,7 @@ for level in range(3):
     check(summary.exists() and json.loads(summary.read_text())["status"] == "completed", f"{summary} completed")
     case = (args.out / f"level_{level}" / "case.toml").read_text()
     check(f"refinement_level = {level}" in case, f"level_{level}/case.toml sets the level")
+    check("element_mm = 1.0" in case and "--set block.element_mm=1" in case, f"level_{level}/case.toml has the --set")
 
 with open(args.out / "converge.csv") as f:
     rows = list(csv.DictReader(f))
