@@ -175,7 +175,8 @@ json report_json(const Report& report) {
   out["settings"] = {{"refinement_ratio", s.ratio},
                      {"safety_factor", s.safety_factor},
                      {"oscillatory_safety_factor", s.oscillatory_safety_factor},
-                     {"order_range", {s.min_order, s.max_order}},
+                     {"formal_order", s.max_order},
+                     {"asymptotic_order_min", s.min_order},
                      {"mesh_independent_tolerance", s.mesh_independent_tolerance},
                      {"band", "f_fine +- gci_fine |f_fine|; estimates on the three finest levels"},
                      {"method", "Celik et al. 2008, J. Fluids Eng. 130:078001; Roache 1998"}};

@@ -50,12 +50,19 @@ Estimate estimate(double coarse, double medium, double fine, const Settings& s) 
     e.behaviour = Behaviour::monotone;
     e.observed_order = e21 == 0.0 ? std::numeric_limits<double>::infinity()
                                   : std::log(std::abs(e32 / e21)) / std::log(s.ratio);
-    e.order = std::clamp(e.observed_order, s.min_order, s.max_order);
-    if (e.order != e.observed_order)
-      e.note = fmt::format("observed order {:.3g} clamped to {:.3g}", e.observed_order, e.order);
+    e.order = std::min(e.observed_order, s.max_order);
+    double safety_factor = s.safety_factor;
+    if (e.observed_order > s.max_order)
+      e.note = fmt::format("observed order {:.3g} above the formal {:g}: {:g} used", e.observed_order, s.max_order,
+                           s.max_order);
+    if (e.observed_order < s.min_order) {
+      safety_factor = s.oscillatory_safety_factor;
+      e.note = fmt::format("observed order {:.3g} < {:g}: not in the asymptotic range, Fs = {:g}", e.observed_order,
+                           s.min_order, safety_factor);
+    }
     const double rp = std::pow(s.ratio, e.order);
     e.extrapolated = (rp * fine - medium) / (rp - 1.0);
-    e.half_width = s.safety_factor * std::abs(e21) / (rp - 1.0);
+    e.half_width = safety_factor * std::abs(e21) / (rp - 1.0);
   }
   e.gci_fine = fine != 0.0 ? e.half_width / std::abs(fine) : (e.half_width == 0.0 ? 0.0 : kNaN);
   e.band_low = fine - e.half_width;

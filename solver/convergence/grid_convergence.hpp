@@ -7,10 +7,12 @@
 // f1 is the finest mesh's value, f2 the middle, f3 the coarsest; the element size shrinks by
 // the constant ratio r = h2/h1 = h3/h2 (r = 2: each mesh.refinement_level halves the sizes):
 //   e32 = f3 - f2,  e21 = f2 - f1,  R = e21/e32
-//   observed order      p  = ln|e32/e21| / ln r                    (constant r, Celik eq. 3-4)
-//   Richardson          f_ext = (r^p f1 - f2)/(r^p - 1)            (Celik eq. 6)
-//   fine-grid GCI       GCI = Fs |e21/f1| / (r^p - 1),  Fs = 1.25  (Celik eq. 10, Roache)
+//   observed order      p  = ln|e32/e21| / ln r                    (Celik's step 3, r21 = r32)
+//   Richardson          f_ext = (r^p f1 - f2)/(r^p - 1)            (step 4)
+//   fine-grid GCI       GCI = Fs |e21/f1| / (r^p - 1),  Fs = 1.25  (step 5; Roache's Fs for 3 meshes)
 //   band                [f1 - GCI |f1|, f1 + GCI |f1|]
+// Celik takes |ln|e32/e21||; the signed logarithm here makes growing differences (p < 0) show
+// as such instead of as a positive order.
 // The band is centred on f1, the value the finest run reports: GCI bounds f1's error, and
 // f_ext is only as good as the assumption that all three meshes are in the asymptotic range.
 //
@@ -22,12 +24,15 @@
 //               convergence by half the spread of the solutions, and Roache's factor 3 is the
 //               one he gives where the order has not been verified.
 //   divergent   |e21| >= |e32| (p <= 0): the differences do not shrink; treated as oscillatory.
-//   monotone    0 <= R < 1. The observed order is reported as measured, and the order used
-//               in f_ext and GCI is clamped to [0.5, 2] (2: the formal order of the quadratic
-//               elements' displacements; derived stresses and strains converge no faster).
-//               Both clamps make the band wider, never narrower: a measured p > 2 would claim
-//               more than the discretisation can deliver, and p < 0.5 makes r^p - 1 so small
-//               that f_ext is noise. The note says when the clamp acted.
+//   monotone    0 <= R < 1. The observed order is reported as measured. Above the formal
+//               order 2 (that of the strains and stresses of quadratic elements, the
+//               displacement gradients) f_ext and GCI use 2: a larger p would claim more than
+//               the discretisation delivers, and p = 2 widens the band. Below 0.5 the meshes
+//               are not in the asymptotic range: f_ext and GCI keep the observed order (raising
+//               it would narrow the band: at p = 0.11, the strain rate's order in
+//               cases/README.md's core-size study, r^p - 1 = 0.08 puts f_ext 13 |e21| from f1)
+//               and Fs becomes 3, Roache's factor for an order that has not been verified. The
+//               note says when either acted.
 //   incomplete  a value is missing (NaN): nothing is estimated.
 // Verdict against an upper limit: pass if the band's upper end < limit, fail if its lower end
 // > limit, undecided otherwise (the limit lies inside the band, or the value is missing).
@@ -41,7 +46,8 @@ struct Settings {
   double ratio = 2.0;                     // r, element-size ratio between consecutive meshes
   double safety_factor = 1.25;            // Fs for three meshes with an observed order
   double oscillatory_safety_factor = 3.0; // Fs_osc on half the spread when there is no order
-  double min_order = 0.5, max_order = 2.0;
+  double min_order = 0.5;                 // below: not asymptotic, Fs_osc instead of Fs
+  double max_order = 2.0;                 // formal order: f_ext and GCI use at most this
   double mesh_independent_tolerance = 1e-12;  // relative to |f1|
 };
 
@@ -52,12 +58,12 @@ struct Estimate {
   double coarse = 0, medium = 0, fine = 0;  // f3, f2, f1
   Behaviour behaviour = Behaviour::incomplete;
   double observed_order = 0;  // p from the data (NaN when there is none)
-  double order = 0;           // p used in f_ext and GCI, after the clamp (NaN when none)
+  double order = 0;           // p used in f_ext and GCI: at most max_order (NaN when none)
   double extrapolated = 0;    // f_ext (NaN when none)
   double half_width = 0;      // GCI |f1|, the band's half-width in the quantity's unit
   double gci_fine = 0;        // relative: half_width / |f1| (NaN when f1 = 0)
   double band_low = 0, band_high = 0;
-  std::string note;           // why there is no order, or that the order was clamped
+  std::string note;           // why there is no order, or that it is outside [min_order, max_order]
 };
 
 // The three values in mesh order: coarsest, middle, finest.

@@ -43,16 +43,20 @@ TEST(GridConvergence, GciByHand) {
   EXPECT_EQ(order_text(e), "2");
 }
 
-// An observed order above the formal 2 is used as 2, which widens the band.
-TEST(GridConvergence, OrderClamped) {
+// An observed order above the formal 2 is used as 2, which widens the band; one below 0.5 is
+// kept (raising it would narrow the band) with Fs = 3.
+TEST(GridConvergence, OrderOutsideAsymptoticRange) {
   const Estimate e = estimate(1.09, 1.01, 1.0);  // e32 = 0.08, e21 = 0.01: p = 3
   EXPECT_NEAR(e.observed_order, 3.0, 1e-10);
   EXPECT_EQ(e.order, 2.0);
   EXPECT_NEAR(e.half_width, 1.25 * 0.01 / 3.0, 1e-12);
-  EXPECT_NE(e.note.find("clamped"), std::string::npos);
-  const Estimate slow = estimate(1.0, 0.5, 0.1);  // e32 = 0.5, e21 = 0.4: p = 0.32
-  EXPECT_EQ(slow.order, 0.5);
-  EXPECT_NEAR(slow.half_width, 1.25 * 0.4 / (std::sqrt(2.0) - 1.0), 1e-12);
+  EXPECT_NE(e.note.find("above the formal"), std::string::npos) << e.note;
+  const Estimate slow = estimate(1.0, 0.5, 0.1);  // e32 = 0.5, e21 = 0.4: r^p = 1.25, p = 0.32
+  EXPECT_NEAR(slow.observed_order, std::log2(1.25), 1e-12);
+  EXPECT_EQ(slow.order, slow.observed_order);
+  EXPECT_NEAR(slow.extrapolated, (1.25 * 0.1 - 0.5) / 0.25, 1e-12);
+  EXPECT_NEAR(slow.half_width, 3.0 * 0.4 / 0.25, 1e-12);
+  EXPECT_NE(slow.note.find("not in the asymptotic range"), std::string::npos) << slow.note;
 }
 
 TEST(GridConvergence, OscillatoryHasSpreadBand) {
