@@ -35,5 +35,6 @@ void add_prbm_check_command(CLI::App& app);
 void add_force_trajectory_command(CLI::App& app);
 void add_run_command(CLI::App& app);
 void add_sweep_command(CLI::App& app);
+void add_converge_command(CLI::App& app);
 
 }  // namespace needlefem::app

@@ -249,6 +249,50 @@ void absolute_mesh_file(FlatTable& flat, const fs::path& relative_to) {
   }
 }
 
+// The base case's keys, flattened, with scene.mesh_file made absolute.
+FlatTable base_case_table(const fs::path& base_case) {
+  FlatTable flat;
+  try {
+    flat = flatten_case(toml::parse_file(base_case.string()));
+  } catch (const toml::parse_error& e) {
+    throw CaseError(fmt::format("{}:{}:{}: TOML syntax error: {}", base_case.string(), e.source().begin.line,
+                                e.source().begin.column, e.description()));
+  }
+  absolute_mesh_file(flat, base_case.parent_path());
+  return flat;
+}
+
+// A design point from its flat case: the case file's text, validated by the case loader and
+// the geometry rules (key errors become the violation "case").
+DesignPoint design_point(const FlatTable& point, std::string name, nlohmann::json values, const std::string& header,
+                         const std::string& origin) {
+  DesignPoint p;
+  p.name = std::move(name);
+  p.values = std::move(values);
+  p.case_text = case_document(point, header);
+  try {
+    const Case c = Case::parse(p.case_text, fmt::format("{} (point {})", origin, p.name));
+    p.resolved = c.to_json();
+    p.violations = scene_violations(c);
+  } catch (const CaseError& e) {
+    p.violations = {{"case", e.what()}};
+  }
+  return p;
+}
+
+// A JSON scalar (or list of numbers) as the TOML value it came from.
+void insert_json(FlatTable& flat, const std::string& key, const nlohmann::json& value) {
+  if (value.is_boolean()) flat.insert_or_assign(key, value.get<bool>());
+  else if (value.is_number_integer()) flat.insert_or_assign(key, value.get<int64_t>());
+  else if (value.is_number()) flat.insert_or_assign(key, value.get<double>());
+  else if (value.is_string()) flat.insert_or_assign(key, value.get<std::string>());
+  else if (value.is_array()) {
+    toml::array list;
+    for (const auto& element : value) list.push_back(element.get<double>());
+    flat.insert_or_assign(key, std::move(list));
+  }
+}
+
 void add_unique(std::vector<std::string>& list, const std::string& item) {
   if (std::find(list.begin(), list.end(), item) == list.end()) list.push_back(item);
 }
@@ -268,15 +312,8 @@ SweepPlan load_sweep(const fs::path& sweep_file) {
   if (!base) file.fail("base", "required: the base case file, relative to the sweep file");
   const fs::path sweep_dir = fs::absolute(sweep_file).parent_path();
   plan.base_case = (sweep_dir / base->get()).lexically_normal();
-  FlatTable base_flat;
-  try {
-    base_flat = flatten_case(toml::parse_file(plan.base_case.string()));
-  } catch (const toml::parse_error& e) {
-    if (!fs::exists(plan.base_case)) file.fail("base", fmt::format("cannot open {}", plan.base_case.string()));
-    throw CaseError(fmt::format("{}:{}:{}: TOML syntax error: {}", plan.base_case.string(), e.source().begin.line,
-                                e.source().begin.column, e.description()));
-  }
-  absolute_mesh_file(base_flat, plan.base_case.parent_path());
+  if (!fs::exists(plan.base_case)) file.fail("base", fmt::format("cannot open {}", plan.base_case.string()));
+  const FlatTable base_flat = base_case_table(plan.base_case);
 
   FlatTable fixed = file.flatten(root.get("set"), "set");
   absolute_mesh_file(fixed, sweep_dir);
@@ -320,24 +357,17 @@ SweepPlan load_sweep(const fs::path& sweep_file) {
       absolute_mesh_file(assigned, sweep_dir);
       for (const auto& [key, value] : assigned) point.insert_or_assign(key, value);
 
-      DesignPoint p;
-      p.grids = {g.name};
       std::vector<std::string> parts;
+      nlohmann::json values;
       for (std::size_t k = 0; k < plan.swept_keys.size(); ++k) {
         const std::string& key = plan.swept_keys[k];
         const toml::node* given = point.get(key);
-        p.values[key] = given ? json_value(*given) : json_default(*find_key(key));
-        parts.push_back(key_labels[k] + "=" + name_text(p.values[key]));
+        values[key] = given ? json_value(*given) : json_default(*find_key(key));
+        parts.push_back(key_labels[k] + "=" + name_text(values[key]));
       }
-      p.name = fmt::format("{}", fmt::join(parts, "__"));
-      p.case_text = case_document(point, header);
-      try {
-        const Case c = Case::parse(p.case_text, fmt::format("{} (point {})", sweep_file.string(), p.name));
-        p.resolved = c.to_json();
-        p.violations = scene_violations(c);
-      } catch (const CaseError& e) {
-        p.violations = {{"case", e.what()}};
-      }
+      DesignPoint p = design_point(point, fmt::format("{}", fmt::join(parts, "__")), std::move(values), header,
+                                   sweep_file.string());
+      p.grids = {g.name};
 
       const auto [it, inserted] = by_name.emplace(p.name, plan.points.size());
       if (inserted) {
@@ -349,6 +379,34 @@ SweepPlan load_sweep(const fs::path& sweep_file) {
         file.fail(plan.swept_keys.front(), fmt::format("two different design points share the directory name '{}'", p.name));
       add_unique(same.grids, g.name);
     }
+  }
+  return plan;
+}
+
+SweepPlan plan_axis(const fs::path& base_case, const std::vector<std::string>& set, const std::string& key,
+                    const std::vector<AxisPoint>& points) {
+  const Case base = Case::load(base_case, set);  // the case loader's errors for the file and the overrides
+  SweepPlan plan;
+  plan.base_case = fs::absolute(base_case).lexically_normal();
+  plan.swept_keys = {key};
+  FlatTable flat = base_case_table(plan.base_case);
+  const nlohmann::json resolved = base.to_json();
+  for (const auto& assignment : set) {
+    const std::string given = assignment.substr(0, assignment.find('='));
+    std::string pointer = "/" + given;
+    std::replace(pointer.begin(), pointer.end(), '.', '/');
+    insert_json(flat, given, resolved.at(nlohmann::json::json_pointer(pointer)));
+  }
+  absolute_mesh_file(flat, plan.base_case.parent_path());  // a --set file is relative to the case, as Case::path reads it
+  std::string overrides;
+  for (const auto& assignment : set) overrides += fmt::format(", --set {}", assignment);
+  for (const auto& axis_point : points) {
+    FlatTable point = flat;
+    insert_json(point, key, axis_point.value);
+    const std::string header = fmt::format("# {}{}, {} = {}.\n", plan.base_case.string(), overrides, key,
+                                           axis_point.value.dump());
+    plan.points.push_back(design_point(point, axis_point.name, nlohmann::json{{key, axis_point.value}}, header,
+                                       plan.base_case.string()));
   }
   return plan;
 }

@@ -57,4 +57,15 @@ struct SweepPlan {
 // single points are recorded in their violations.
 SweepPlan load_sweep(const std::filesystem::path& sweep_file);
 
+// A plan of one axis without a sweep file: the base case with the --set overrides `set`
+// ("key=value", validated and typed by the case loader) in every point, and `key` taking the
+// value of each point in turn, point i named names[i] (`needlefem converge`: the refinement
+// levels). Errors of the base case or of the overrides throw CaseError; plan.sweep_file is empty.
+struct AxisPoint {
+  std::string name;
+  nlohmann::json value;  // a scalar of the key's type
+};
+SweepPlan plan_axis(const std::filesystem::path& base_case, const std::vector<std::string>& set,
+                    const std::string& key, const std::vector<AxisPoint>& points);
+
 }  // namespace needlefem::sweep

@@ -121,9 +121,9 @@ std::string duration(double seconds) {
 
 class Progress {
  public:
-  Progress(std::FILE* stream, const LauncherRank& rank, std::size_t total, std::size_t done)
+  Progress(std::FILE* stream, const std::string& label, const LauncherRank& rank, std::size_t total, std::size_t done)
       : stream_(stream), total_(total), done_(done),
-        prefix_(rank.size > 1 ? fmt::format("sweep[{}/{}]", rank.rank, rank.size) : "sweep") {}
+        prefix_(rank.size > 1 ? fmt::format("{}[{}/{}]", label, rank.rank, rank.size) : label) {}
 
   void line(const std::string& text) const {
     if (!stream_) return;
@@ -197,7 +197,7 @@ SweepOutcome run_sweep(const SweepPlan& plan, const SweepOptions& options) {
     return expected_cost(plan.points[a]) > expected_cost(plan.points[b]);
   });
 
-  Progress progress(options.progress, rank, outcome.total, outcome.already_done);
+  Progress progress(options.progress, options.label, rank, outcome.total, outcome.already_done);
   if (rank.rank == 0)
     for (const auto& p : plan.points)
       for (const auto& v : p.violations) progress.line(fmt::format("impossible, not run: {}: rule '{}': {}", p.name, v.rule, v.message));
@@ -207,7 +207,7 @@ SweepOutcome run_sweep(const SweepPlan& plan, const SweepOptions& options) {
   if (options.list_only)
     for (std::size_t i : queue) progress.line(fmt::format("to run: {} ({})", plan.points[i].name,
                                                           fmt::join(plan.points[i].grids, ",")));
-  write_tables(plan, options.out_dir);
+  if (options.write_tables) write_tables(plan, options.out_dir);
   if (options.list_only) return outcome;
 
   const auto environment = child_environment(rank.launched, options.jobs);
@@ -253,15 +253,17 @@ SweepOutcome run_sweep(const SweepPlan& plan, const SweepOptions& options) {
     }
     if (record.status == "completed") ++outcome.completed;
     else ++outcome.failed;
-    write_tables(plan, options.out_dir);
+    if (options.write_tables) write_tables(plan, options.out_dir);
     progress.finished(record.status == "completed"
                           ? fmt::format("completed {} in {}{}", p.name, duration(seconds), maxima_text(record.summary))
                           : fmt::format("FAILED {} after {}: {}", p.name, duration(seconds), record.error),
                       queue.size() + running.size());
   }
-  progress.line(fmt::format("finished: {} completed, {} failed, {} already done, {} impossible; tables {} and {}",
-                            outcome.completed, outcome.failed, outcome.already_done, outcome.impossible,
-                            (options.out_dir / "sweep.csv").string(), (options.out_dir / "sweep.h5").string()));
+  const std::string tables = options.write_tables ? fmt::format("; tables {} and {}", (options.out_dir / "sweep.csv").string(),
+                                                                 (options.out_dir / "sweep.h5").string())
+                                                   : "";
+  progress.line(fmt::format("finished: {} completed, {} failed, {} already done, {} impossible{}", outcome.completed,
+                            outcome.failed, outcome.already_done, outcome.impossible, tables));
   return outcome;
 }
 

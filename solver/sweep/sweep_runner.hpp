@@ -34,6 +34,8 @@ struct SweepOptions {
   bool list_only = false;  // list the points and write the table; run nothing
   std::vector<std::string> backend_options;  // passed after "--" to every run
   std::FILE* progress = stdout;
+  std::string label = "sweep";  // prefix of the progress lines
+  bool write_tables = true;     // keep DIR/sweep.csv and DIR/sweep.h5 (sweep/sweep_table.hpp)
 };
 
 struct SweepOutcome {

@@ -185,13 +185,6 @@ std::deque<Column> table_columns(const SweepPlan& plan, const fs::path& out_dir)
   return columns;
 }
 
-std::string csv_field(const std::string& text) {
-  if (text.find_first_of(",\"\n") == std::string::npos) return text;
-  std::string quoted = "\"";
-  for (char ch : text) quoted += ch == '"' ? std::string("\"\"") : std::string(1, ch);
-  return quoted + "\"";
-}
-
 std::string csv_text(const std::deque<Column>& columns, std::size_t rows) {
   std::vector<std::string> header;
   for (const auto& c : columns) header.push_back(csv_field(c.name));
@@ -295,6 +288,13 @@ class TableLock {
 fs::path partial_name(const fs::path& file) { return fmt::format("{}.partial.{}", file.string(), ::getpid()); }
 
 }  // namespace
+
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (char ch : text) quoted += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+  return quoted + "\"";
+}
 
 fs::path point_directory(const fs::path& out_dir, const DesignPoint& point) { return out_dir / point.name; }
 

@@ -46,6 +46,9 @@ std::filesystem::path point_directory(const std::filesystem::path& out_dir, cons
 // A point counts as run only when DIR/<point>/summary.json echoes the point's own case.
 PointRecord read_point(const DesignPoint& point, const std::filesystem::path& out_dir);
 
+// A CSV field, quoted when it holds a comma, a quote or a line break.
+std::string csv_field(const std::string& text);
+
 // Writes `text` to `file` through a temporary file renamed over it.
 void write_file_atomically(const std::filesystem::path& file, const std::string& text);
 

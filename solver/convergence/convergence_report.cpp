@@ -1,0 +1,252 @@
+#include "convergence/convergence_report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "sweep/sweep_table.hpp"
+
+namespace needlefem::convergence {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using json = nlohmann::json;
+
+// Safety metrics in the limit's own unit (a field value), which get a verdict; the others
+// (volume above the limit, its region fraction) are converged but not compared.
+constexpr const char* kComparedSafetyMetrics[] = {"point_max", "critical_distance", "percentile"};
+// Point maxima under summary "max" that a limit of summary "thresholds" applies to.
+const std::map<std::string, std::string> kMaximumLimit = {
+    {"log_strain", "log_strain"}, {"strain_rate_per_s", "strain_rate_per_s"}, {"von_mises_pa", "stress_pa"}};
+constexpr const char* kNeedleLoads[] = {"max_axial_force_n", "max_torque_n_m"};
+
+double number(const json& j, const json::json_pointer& pointer) {
+  if (!j.is_object() || !j.contains(pointer)) return kNaN;
+  const json& v = j.at(pointer);
+  return v.is_number() ? v.get<double>() : kNaN;
+}
+
+json number_json(double x) { return std::isfinite(x) ? json(x) : json(nullptr); }
+
+// A summary's number as it was written (a count stays an integer), null when absent.
+json summary_number(const json& summary, const char* pointer) {
+  const json::json_pointer at(pointer);
+  return summary.is_object() && summary.contains(at) && summary.at(at).is_number() ? summary.at(at) : json(nullptr);
+}
+
+std::string number_text(double x) { return std::isfinite(x) ? fmt::format("{:.9g}", x) : std::string(); }
+
+struct MetricKey {
+  std::string metric, pointer, limit_name;
+  bool compared = false;
+};
+
+// The metrics one summary reports, in the order of the header comment.
+std::vector<MetricKey> metrics_of(const json& summary) {
+  std::vector<MetricKey> out;
+  if (!summary.is_object()) return out;
+  if (summary.contains("safety") && summary["safety"].is_object())
+    for (const auto& [limit, entry] : summary["safety"].items()) {
+      if (limit == "settings" || !entry.is_object()) continue;
+      for (const auto& [name, metric] : entry.items()) {
+        if (!metric.is_object() || !metric.contains("value") || !metric["value"].is_number()) continue;
+        const bool compared = std::find(std::begin(kComparedSafetyMetrics), std::end(kComparedSafetyMetrics), name) !=
+                              std::end(kComparedSafetyMetrics);
+        out.push_back({fmt::format("safety.{}.{}", limit, name), fmt::format("/safety/{}/{}/value", limit, name), limit,
+                       compared});
+      }
+    }
+  if (summary.contains("max") && summary["max"].is_object())
+    for (const auto& [name, maximum] : summary["max"].items()) {
+      if (!maximum.is_object() || !maximum.contains("value") || !maximum["value"].is_number()) continue;
+      const auto limit = kMaximumLimit.find(name);
+      out.push_back({"max." + name, fmt::format("/max/{}/value", name),
+                     limit == kMaximumLimit.end() ? "" : limit->second, limit != kMaximumLimit.end()});
+    }
+  for (const char* load : kNeedleLoads)
+    if (!std::isnan(number(summary, json::json_pointer(fmt::format("/needle/{}", load)))))
+      out.push_back({fmt::format("needle.{}", load), fmt::format("/needle/{}", load), "", false});
+  return out;
+}
+
+// A limit's value: safety.<limit>.limit, else thresholds.<limit>.limit, from the finest level
+// that gives it.
+double limit_value(const std::vector<LevelRun>& levels, const std::string& name) {
+  for (auto level = levels.rbegin(); level != levels.rend(); ++level)
+    for (const char* section : {"safety", "thresholds"}) {
+      const double limit = number(level->summary, json::json_pointer(fmt::format("/{}/{}/limit", section, name)));
+      if (!std::isnan(limit)) return limit;
+    }
+  return kNaN;
+}
+
+}  // namespace
+
+Report build_report(std::vector<LevelRun> levels, const Settings& settings) {
+  if (levels.size() < 3) throw std::invalid_argument("grid convergence needs three levels");
+  Report report;
+  report.settings = settings;
+  report.levels = std::move(levels);
+  const auto& runs = report.levels;
+  const std::size_t n = runs.size();
+
+  std::vector<MetricKey> keys;
+  for (const auto& run : runs)
+    for (auto& key : metrics_of(run.status == "completed" ? run.summary : json()))
+      if (std::none_of(keys.begin(), keys.end(), [&](const MetricKey& k) { return k.metric == key.metric; }))
+        keys.push_back(std::move(key));
+
+  for (const auto& key : keys) {
+    MetricRow row;
+    row.metric = key.metric;
+    row.limit_name = key.limit_name;
+    row.limit = key.limit_name.empty() ? kNaN : limit_value(runs, key.limit_name);
+    row.compared = key.compared && !std::isnan(row.limit);
+    for (const auto& run : runs)
+      row.values.push_back(run.status == "completed" ? number(run.summary, json::json_pointer(key.pointer)) : kNaN);
+    row.estimate = estimate(row.values[n - 3], row.values[n - 2], row.values[n - 1], settings);
+    if (row.compared) row.verdict = verdict(row.estimate, row.limit);
+    report.rows.push_back(std::move(row));
+  }
+
+  std::vector<double> tets;
+  for (const auto& run : runs) tets.push_back(number(run.summary, json::json_pointer("/mesh/tets")));
+  if (std::none_of(tets.begin(), tets.end(), [](double t) { return std::isnan(t); })) {
+    if (std::all_of(tets.begin(), tets.end(), [&](double t) { return t == tets.front(); }))
+      report.warnings.push_back(fmt::format("all levels have the same mesh ({} tets): mesh.refinement_level does not "
+                                            "refine this case, so the bands hold no discretisation error", tets.front()));
+    else
+      for (std::size_t i = 1; i < n; ++i) {
+        const double ratio = std::cbrt(tets[i] / tets[i - 1]);
+        if (std::abs(ratio / settings.ratio - 1.0) > 0.25)
+          report.warnings.push_back(fmt::format("level {}: effective refinement ratio (N/N_previous)^(1/3) = {:.3g}, "
+                                                "not the nominal {:g} the orders assume", runs[i].level, ratio, settings.ratio));
+      }
+  }
+
+  // Each limit's verdict from its most objective compared metric.
+  std::vector<std::string> names;
+  for (const auto& row : report.rows)
+    if (row.compared && std::find(names.begin(), names.end(), row.limit_name) == names.end()) names.push_back(row.limit_name);
+  for (const auto& name : names) {
+    const MetricRow* decider = nullptr;
+    for (const std::string& metric :
+         {"safety." + name + ".critical_distance", "safety." + name + ".point_max", std::string()}) {
+      for (const auto& row : report.rows)
+        if (row.compared && row.limit_name == name && (metric.empty() ? row.metric.starts_with("max.") : row.metric == metric)) {
+          decider = &row;
+          break;
+        }
+      if (decider) break;
+    }
+    if (decider) report.limits.push_back({name, decider->limit, decider->metric, *decider->verdict});
+  }
+  return report;
+}
+
+std::string report_csv(const Report& report) {
+  std::vector<std::string> header{"metric", "limit", "limit_value"};
+  for (const auto& run : report.levels) header.push_back(fmt::format("f_level{}", run.level));
+  for (const char* column : {"observed_order", "f_extrapolated", "gci_fine", "band_low", "band_high", "verdict", "note"})
+    header.emplace_back(column);
+  std::string text = fmt::format("{}\n", fmt::join(header, ","));
+  for (const auto& row : report.rows) {
+    const Estimate& e = row.estimate;
+    std::vector<std::string> fields{row.metric, row.limit_name, number_text(row.limit)};
+    for (double v : row.values) fields.push_back(number_text(v));
+    fields.insert(fields.end(), {e.behaviour == Behaviour::incomplete ? "" : order_text(e), number_text(e.extrapolated),
+                                 number_text(e.gci_fine), number_text(e.band_low), number_text(e.band_high),
+                                 row.verdict ? to_string(*row.verdict) : "", e.note});
+    for (auto& field : fields) field = sweep::csv_field(field);
+    text += fmt::format("{}\n", fmt::join(fields, ","));
+  }
+  return text;
+}
+
+json report_json(const Report& report) {
+  const Settings& s = report.settings;
+  json out;
+  out["format"] = "needlefem-converge";
+  out["settings"] = {{"refinement_ratio", s.ratio},
+                     {"safety_factor", s.safety_factor},
+                     {"oscillatory_safety_factor", s.oscillatory_safety_factor},
+                     {"formal_order", s.max_order},
+                     {"asymptotic_order_min", s.min_order},
+                     {"mesh_independent_tolerance", s.mesh_independent_tolerance},
+                     {"band", "f_fine +- gci_fine |f_fine|; estimates on the three finest levels"},
+                     {"method", "Celik et al. 2008, J. Fluids Eng. 130:078001; Roache 1998"}};
+  json levels = json::array();
+  for (std::size_t i = 0; i < report.levels.size(); ++i) {
+    const LevelRun& run = report.levels[i];
+    const json& summary = run.summary;
+    json level = {{"level", run.level},
+                  {"directory", run.directory},
+                  {"status", run.status},
+                  {"relative_size", std::ldexp(1.0, -(run.level - report.levels.front().level))},
+                  {"tets", summary_number(summary, "/mesh/tets")},
+                  {"nodes", summary_number(summary, "/mesh/nodes")},
+                  {"dofs", summary_number(summary, "/solver/dofs")},
+                  {"wall_s", summary_number(summary, "/solver/wall_s")}};
+    if (!run.error.empty()) level["error"] = run.error;
+    // (N_this / N_previous)^(1/3): the size ratio the mesher actually achieved, for information.
+    if (i > 0) {
+      const double ratio = std::cbrt(number(summary, json::json_pointer("/mesh/tets")) /
+                                     number(report.levels[i - 1].summary, json::json_pointer("/mesh/tets")));
+      level["effective_ratio_to_previous"] = number_json(ratio);
+    }
+    levels.push_back(level);
+  }
+  out["levels"] = levels;
+  json rows = json::array();
+  for (const auto& row : report.rows) {
+    const Estimate& e = row.estimate;
+    json values = json::array();
+    for (double v : row.values) values.push_back(number_json(v));
+    json r = {{"metric", row.metric},
+              {"values", values},
+              {"behaviour", to_string(e.behaviour)},
+              {"observed_order", number_json(e.observed_order)},
+              {"order_used", number_json(e.order)},
+              {"order", e.behaviour == Behaviour::incomplete ? "" : order_text(e)},
+              {"f_extrapolated", number_json(e.extrapolated)},
+              {"gci_fine", number_json(e.gci_fine)},
+              {"band", {number_json(e.band_low), number_json(e.band_high)}},
+              {"note", e.note}};
+    if (!row.limit_name.empty()) {
+      r["limit"] = row.limit_name;
+      r["limit_value"] = number_json(row.limit);
+    }
+    if (row.verdict) r["verdict"] = to_string(*row.verdict);
+    rows.push_back(r);
+  }
+  out["metrics"] = rows;
+  json verdicts = json::object();
+  for (const auto& limit : report.limits)
+    verdicts[limit.limit_name] = {{"verdict", to_string(limit.verdict)}, {"metric", limit.metric}, {"limit", limit.limit}};
+  out["verdicts"] = verdicts;
+  out["warnings"] = report.warnings;
+  return out;
+}
+
+std::string verdict_line(const Report& report) {
+  if (report.limits.empty()) return "converge: no safety limit reported: no verdict";
+  bool any_fail = false, any_undecided = false;
+  std::vector<std::string> parts;
+  for (const auto& limit : report.limits) {
+    any_fail = any_fail || limit.verdict == Verdict::fail;
+    any_undecided = any_undecided || limit.verdict == Verdict::undecided;
+    const auto row = std::find_if(report.rows.begin(), report.rows.end(), [&](const MetricRow& r) { return r.metric == limit.metric; });
+    parts.push_back(fmt::format("{} {} ({} {:.4g} in [{:.4g}, {:.4g}], limit {:.4g})", limit.limit_name,
+                                to_string(limit.verdict), limit.metric, row->estimate.fine, row->estimate.band_low,
+                                row->estimate.band_high, limit.limit));
+  }
+  const char* overall = any_fail ? "FAIL" : any_undecided ? "UNDECIDED" : "PASS";
+  return fmt::format("converge: {}: {}", overall, fmt::join(parts, "; "));
+}
+
+}  // namespace needlefem::convergence

@@ -1,0 +1,102 @@
+#!/usr/bin/python3
+"""`needlefem converge` end to end on a tiny homogeneous block (tests/convergence/block_short.toml):
+exit 0, a level folder with a completed summary per level (its case with the --set override), converge.csv with the documented
+columns and one row per metric, converge.json with three levels (tets, dofs, wall time) and a
+verdict per limit; the block's max log strain ln 1.2 passes the 0.19 limit; a second start runs
+nothing (resumed) and gives the same report; postprocess/plot_convergence.py writes a PNG.
+With --failing-case (a case whose run fails): converge exits non-zero with one stderr line naming
+level 0 and the reason, and still writes converge.json and converge.csv.
+
+usage: check_converge.py --exe NEEDLEFEM --case CASE --out DIR --plot PLOT_SCRIPT [--failing-case CASE]
+"""
+import argparse
+import csv
+import json
+import math
+import pathlib
+import shutil
+import subprocess
+import sys
+
+failures = []
+
+
+def check(condition, message):
+    print(("ok   " if condition else "FAIL ") + message)
+    if not condition:
+        failures.append(message)
+
+
+parser = argparse.ArgumentParser()
+parser.add_argument("--exe", required=True)
+parser.add_argument("--case", required=True)
+parser.add_argument("--out", type=pathlib.Path, required=True)
+parser.add_argument("--plot", required=True)
+parser.add_argument("--failing-case")
+args = parser.parse_args()
+shutil.rmtree(args.out, ignore_errors=True)
+
+command = [args.exe, "converge", args.case, "--out", str(args.out), "--jobs", "2", "--set", "block.element_mm=1"]
+run = subprocess.run(command, capture_output=True, text=True)
+print(run.stdout, run.stderr)
+check(run.returncode == 0, f"converge exits 0 (got {run.returncode})")
+last = run.stdout.strip().splitlines()[-1] if run.stdout.strip() else ""
+check(last.startswith("converge: PASS"), f"the last stdout line is the verdict: {last!r}")
+
+for level in range(3):
+    summary = args.out / f"level_{level}" / "summary.json"
+    check(summary.exists() and json.loads(summary.read_text())["status"] == "completed", f"{summary} completed")
+    case = (args.out / f"level_{level}" / "case.toml").read_text()
+    check(f"refinement_level = {level}" in case, f"level_{level}/case.toml sets the level")
+    check("element_mm = 1.0" in case and "--set block.element_mm=1" in case, f"level_{level}/case.toml has the --set")
+
+with open(args.out / "converge.csv") as f:
+    rows = list(csv.DictReader(f))
+expected = ["metric", "limit", "limit_value", "f_level0", "f_level1", "f_level2", "observed_order", "f_extrapolated",
+            "gci_fine", "band_low", "band_high", "verdict", "note"]
+check(rows and list(rows[0].keys()) == expected, f"converge.csv columns {list(rows[0].keys()) if rows else None}")
+by_metric = {r["metric"]: r for r in rows}
+strain = by_metric.get("max.log_strain")
+check(strain is not None and abs(float(strain["f_level2"]) - math.log(1.2)) < 1e-3,
+      f"max.log_strain at level 2 is ln 1.2: {strain}")
+check(strain is not None and strain["verdict"] == "pass" and float(strain["band_high"]) < 0.19,
+      "max.log_strain passes 0.19 with its band")
+
+report = json.loads((args.out / "converge.json").read_text())
+check([level["level"] for level in report["levels"]] == [0, 1, 2], "converge.json has levels 0, 1, 2")
+check(all(level["status"] == "completed" and level["tets"] and level["dofs"] and level["wall_s"] is not None
+          for level in report["levels"]), "each level gives tets, dofs and wall time")
+check(len(report["metrics"]) == len(rows), "converge.json and converge.csv have the same metrics")
+check(report["verdicts"].get("log_strain", {}).get("verdict") == "pass", f"log_strain verdict: {report['verdicts']}")
+if len({level["tets"] for level in report["levels"]}) == 1:
+    check(any("same mesh" in w for w in report["warnings"]) and "converge: warning: all levels have the same mesh"
+          in run.stdout, "levels with the same mesh are flagged in converge.json and on stdout")
+check(report["settings"]["refinement_ratio"] == 2.0 and report["settings"]["safety_factor"] == 1.25,
+      "settings recorded")
+
+again = subprocess.run(command, capture_output=True, text=True)
+check(again.returncode == 0 and "0 to run" in again.stdout, "a second start runs nothing")
+check(json.loads((args.out / "converge.json").read_text())["metrics"] == report["metrics"], "and reports the same")
+
+plot = subprocess.run(["/usr/bin/python3", args.plot, str(args.out)], capture_output=True, text=True)
+print(plot.stdout, plot.stderr)
+png = args.out / "convergence.png"
+check(plot.returncode == 0 and png.exists() and png.stat().st_size > 10000, f"{png} written")
+
+if args.failing_case:
+    out = args.out.parent / (args.out.name + "_failing")
+    shutil.rmtree(out, ignore_errors=True)
+    run = subprocess.run([args.exe, "converge", args.failing_case, "--out", str(out), "--jobs", "2"],
+                         capture_output=True, text=True)
+    lines = [line for line in run.stderr.splitlines() if line.strip()]
+    print(run.stderr)
+    check(run.returncode != 0, "a failing level makes converge exit non-zero")
+    check(len(lines) == 1 and "converge: level 0 failed:" in lines[0], f"one stderr line naming level 0: {lines}")
+    partial = out / "converge.json"
+    check(partial.exists() and (out / "converge.csv").exists(), "converge.json and converge.csv still written")
+    if partial.exists():
+        levels = json.loads(partial.read_text())["levels"]
+        check(levels[0]["status"] == "failed" and levels[0].get("error"), f"level 0 recorded as failed: {levels[0]}")
+
+if failures:
+    sys.exit(f"{len(failures)} check(s) failed")

@@ -1,0 +1,178 @@
+// convergence/grid_convergence.hpp on sequences with a known answer, and
+// convergence/convergence_report.hpp on synthetic summaries.
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "convergence/convergence_report.hpp"
+#include "convergence/grid_convergence.hpp"
+
+namespace needlefem::convergence {
+namespace {
+
+// f(h) = f* + C h^p on h = 1, 1/2, 1/4 (r = 2) gives back p and f* exactly.
+class KnownOrder : public ::testing::TestWithParam<double> {};
+
+TEST_P(KnownOrder, RecoversOrderAndLimit) {
+  const double p = GetParam(), exact = 0.25, c = 0.3;
+  const auto f = [&](double h) { return exact + c * std::pow(h, p); };
+  const Estimate e = estimate(f(1.0), f(0.5), f(0.25));
+  EXPECT_EQ(e.behaviour, Behaviour::monotone);
+  EXPECT_NEAR(e.observed_order, p, 1e-10);
+  EXPECT_EQ(e.order, e.observed_order);
+  EXPECT_NEAR(e.extrapolated, exact, 1e-10);
+  EXPECT_TRUE(e.note.empty()) << e.note;
+  // The band holds the exact value: GCI = 1.25 |e21/f1| / (r^p - 1) = 1.25 |f1 - f*| / |f1|.
+  EXPECT_NEAR(e.half_width, 1.25 * (f(0.25) - exact), 1e-12);
+  EXPECT_LT(e.band_low, exact);
+}
+
+INSTANTIATE_TEST_SUITE_P(Orders, KnownOrder, ::testing::Values(1.0, 2.0, 1.5));
+
+// Hand computation: f = 1.0, 0.9, 0.875: e32 = 0.1, e21 = 0.025, p = ln 4 / ln 2 = 2,
+// f_ext = (4 * 0.875 - 0.9)/3 = 0.8666..., GCI = 1.25 * 0.025/0.875 / 3 = 0.0119047619...
+TEST(GridConvergence, GciByHand) {
+  const Estimate e = estimate(1.0, 0.9, 0.875);
+  EXPECT_NEAR(e.observed_order, 2.0, 1e-12);
+  EXPECT_NEAR(e.extrapolated, 2.6 / 3.0, 1e-12);
+  EXPECT_NEAR(e.gci_fine, 0.011904761904761904, 1e-12);
+  EXPECT_NEAR(e.band_low, 0.875 - 0.03125 / 3.0, 1e-12);
+  EXPECT_NEAR(e.band_high, 0.875 + 0.03125 / 3.0, 1e-12);
+  EXPECT_EQ(order_text(e), "2");
+}
+
+// An observed order above the formal 2 is used as 2, which widens the band; one below 0.5 is
+// kept (raising it would narrow the band) with Fs = 3.
+TEST(GridConvergence, OrderOutsideAsymptoticRange) {
+  const Estimate e = estimate(1.09, 1.01, 1.0);  // e32 = 0.08, e21 = 0.01: p = 3
+  EXPECT_NEAR(e.observed_order, 3.0, 1e-10);
+  EXPECT_EQ(e.order, 2.0);
+  EXPECT_NEAR(e.half_width, 1.25 * 0.01 / 3.0, 1e-12);
+  EXPECT_NE(e.note.find("above the formal"), std::string::npos) << e.note;
+  const Estimate slow = estimate(1.0, 0.5, 0.1);  // e32 = 0.5, e21 = 0.4: r^p = 1.25, p = 0.32
+  EXPECT_NEAR(slow.observed_order, std::log2(1.25), 1e-12);
+  EXPECT_EQ(slow.order, slow.observed_order);
+  EXPECT_NEAR(slow.extrapolated, (1.25 * 0.1 - 0.5) / 0.25, 1e-12);
+  EXPECT_NEAR(slow.half_width, 3.0 * 0.4 / 0.25, 1e-12);
+  EXPECT_NE(slow.note.find("not in the asymptotic range"), std::string::npos) << slow.note;
+}
+
+TEST(GridConvergence, OscillatoryHasSpreadBand) {
+  const Estimate e = estimate(1.0, 1.2, 1.1);  // e32 = -0.2, e21 = 0.1: R < 0
+  EXPECT_EQ(e.behaviour, Behaviour::oscillatory);
+  EXPECT_EQ(order_text(e), "oscillatory");
+  EXPECT_TRUE(std::isnan(e.extrapolated));
+  EXPECT_NEAR(e.half_width, 3.0 * 0.2 / 2.0, 1e-12);
+  EXPECT_NEAR(e.band_low, 0.8, 1e-12);
+  EXPECT_NEAR(e.band_high, 1.4, 1e-12);
+}
+
+TEST(GridConvergence, DivergentHasSpreadBand) {
+  const Estimate e = estimate(1.0, 1.01, 1.1);  // the differences grow
+  EXPECT_EQ(e.behaviour, Behaviour::divergent);
+  EXPECT_NEAR(e.half_width, 3.0 * 0.1 / 2.0, 1e-12);
+}
+
+TEST(GridConvergence, MeshIndependentQuantity) {
+  for (const Estimate& e : {estimate(0.3, 0.3, 0.3), estimate(0.3 * (1 + 1e-14), 0.3, 0.3 * (1 - 1e-14)),
+                            estimate(0.0, 0.0, 0.0)}) {
+    EXPECT_EQ(e.behaviour, Behaviour::converged);
+    EXPECT_EQ(order_text(e), "n/a");
+    EXPECT_EQ(e.gci_fine, 0.0);
+    EXPECT_EQ(e.band_low, e.fine);
+    EXPECT_EQ(e.band_high, e.fine);
+    EXPECT_EQ(e.extrapolated, e.fine);
+  }
+}
+
+TEST(GridConvergence, Verdicts) {
+  const Estimate e = estimate(1.0, 0.9, 0.875);  // band [0.8646, 0.8854]
+  EXPECT_EQ(verdict(e, 0.9), Verdict::pass);
+  EXPECT_EQ(verdict(e, 0.85), Verdict::fail);
+  EXPECT_EQ(verdict(e, 0.88), Verdict::undecided);
+  EXPECT_EQ(verdict(estimate(1.0, NAN, 0.875), 0.9), Verdict::undecided);
+  EXPECT_EQ(verdict(estimate(0.1, 0.1, 0.1), 0.1), Verdict::undecided);  // on the limit
+}
+
+nlohmann::json summary(double point_max, double critical, double volume, bool with_safety) {
+  nlohmann::json s = {{"status", "completed"},
+                      {"max", {{"log_strain", {{"value", point_max}}}, {"principal_stress_pa", {{"value", 10.0}}}}},
+                      {"thresholds", {{"log_strain", {{"limit", 0.19}, {"max", point_max}, {"pass", true}}}}},
+                      {"needle", {{"max_axial_force_n", 0.01}}},
+                      {"mesh", {{"tets", 1000}}}};
+  if (with_safety)
+    s["safety"] = {{"settings", {{"critical_distance_mm", 0.25}}},
+                   {"log_strain",
+                    {{"limit", 0.19},
+                     {"point_max", {{"value", point_max}}},
+                     {"critical_distance", {{"value", critical}}},
+                     {"volume_above_limit_mm3", {{"value", volume}}},
+                     {"verdict", "pass"}}}};
+  return s;
+}
+
+// The critical-distance value decides although the point maximum's band holds the limit.
+TEST(ConvergenceReport, CriticalDistanceDecides) {
+  std::vector<LevelRun> levels;
+  const double point_max[] = {0.15, 0.17, 0.18}, critical[] = {0.12, 0.105, 0.1};
+  for (int l = 0; l < 3; ++l)
+    levels.push_back({l, "level_" + std::to_string(l), "completed", "", summary(point_max[l], critical[l], 0.0, true)});
+  const Report report = build_report(levels);
+  ASSERT_EQ(report.limits.size(), 1u);
+  EXPECT_EQ(report.limits[0].metric, "safety.log_strain.critical_distance");
+  EXPECT_EQ(report.limits[0].verdict, Verdict::pass);
+  EXPECT_NEAR(report.limits[0].limit, 0.19, 0.0);
+  const auto& rows = report.rows;
+  const auto row = [&](const std::string& metric) {
+    return std::find_if(rows.begin(), rows.end(), [&](const MetricRow& r) { return r.metric == metric; });
+  };
+  ASSERT_NE(row("max.log_strain"), rows.end());
+  EXPECT_EQ(*row("max.log_strain")->verdict, Verdict::undecided);  // 0.18 + 1.25 * 0.01 / 1 > 0.19
+  ASSERT_NE(row("safety.log_strain.volume_above_limit_mm3"), rows.end());
+  EXPECT_FALSE(row("safety.log_strain.volume_above_limit_mm3")->verdict.has_value());
+  EXPECT_EQ(row("safety.log_strain.volume_above_limit_mm3")->estimate.behaviour, Behaviour::converged);
+  EXPECT_FALSE(row("max.principal_stress_pa")->verdict.has_value());
+  EXPECT_NE(row("needle.max_axial_force_n"), rows.end());
+  const std::string csv = report_csv(report);
+  EXPECT_EQ(csv.substr(0, csv.find('\n')),
+            "metric,limit,limit_value,f_level0,f_level1,f_level2,observed_order,f_extrapolated,gci_fine,band_low,"
+            "band_high,verdict,note");
+  EXPECT_NE(verdict_line(report).find("converge: PASS"), std::string::npos) << verdict_line(report);
+  ASSERT_EQ(report.warnings.size(), 1u);  // every level has 1000 tets
+  EXPECT_NE(report.warnings[0].find("same mesh"), std::string::npos) << report.warnings[0];
+}
+
+// A level whose tet count grows by less than r^3 is flagged; one that grows by r^3 is not.
+TEST(ConvergenceReport, EffectiveRatioWarning) {
+  std::vector<LevelRun> levels;
+  const int tets[] = {1000, 8000, 20000};  // ratios 2 and 1.36
+  for (int l = 0; l < 3; ++l) {
+    levels.push_back({l, "", "completed", "", summary(0.1, 0, 0, false)});
+    levels.back().summary["mesh"]["tets"] = tets[l];
+  }
+  const Report report = build_report(levels);
+  ASSERT_EQ(report.warnings.size(), 1u);
+  EXPECT_EQ(report.warnings[0].rfind("level 2: effective refinement ratio", 0), 0u) << report.warnings[0];
+  EXPECT_NEAR(report_json(report)["levels"][2]["effective_ratio_to_previous"].get<double>(), std::cbrt(2.5), 1e-12);
+}
+
+// Without "safety" the point maximum decides; a failed level leaves its values empty.
+TEST(ConvergenceReport, PointMaximumFallbackAndFailedLevel) {
+  std::vector<LevelRun> levels;
+  for (int l = 0; l < 3; ++l) levels.push_back({l, "", "completed", "", summary(0.3, 0, 0, false)});
+  Report report = build_report(levels);
+  ASSERT_EQ(report.limits.size(), 1u);
+  EXPECT_EQ(report.limits[0].metric, "max.log_strain");
+  EXPECT_EQ(report.limits[0].verdict, Verdict::fail);
+  levels[1] = {1, "", "failed", "diverged", nullptr};
+  report = build_report(levels);
+  EXPECT_EQ(report.limits[0].verdict, Verdict::undecided);
+  EXPECT_EQ(report.rows[0].estimate.behaviour, Behaviour::incomplete);
+  EXPECT_TRUE(std::isnan(report.rows[0].values[1]));
+  EXPECT_EQ(report_json(report)["levels"][1]["error"], "diverged");
+}
+
+}  // namespace
+}  // namespace needlefem::convergence
