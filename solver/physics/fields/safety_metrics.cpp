@@ -1,6 +1,7 @@
 #include "physics/fields/safety_metrics.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -14,7 +15,6 @@ constexpr int kVoxelsPerRadius = 4;         // lattice spacing s = ℓ/4
 constexpr int kReach = 7;                   // voxel offsets within the 27 blocks around a voxel's block
 constexpr int kWidth = 2 * kReach + 1;
 constexpr long long kKeyBias = 1LL << 20;   // lattice indices from -2^20 to 2^20
-constexpr std::size_t kChunk = 8;           // candidate blocks evaluated together on the threads
 
 bool selected(std::span<const char> mask, std::size_t q) { return mask.empty() || mask[q]; }
 
@@ -180,31 +180,47 @@ LocatedValue BallAverager::maximum(std::span<const double> field) const {
       if (nb >= 0) bound = std::max(bound, block_largest[nb]);
     candidates.push_back({bound, static_cast<int>(b)});
   }
-  // Descending bound, equal bounds in lattice order; within a chunk the best is taken in
-  // candidate and voxel order: the answer depends neither on hashing nor on threads.
+  // Descending bound, equal bounds in lattice order. The threads take candidates in that order
+  // and stop at the first whose bound is below the best average found so far; the block holding
+  // the true maximum always has a bound at least that large, so it is always evaluated. Equal
+  // averages go to the earliest (candidate, voxel): the answer depends neither on hashing nor on
+  // threads.
   std::sort(candidates.begin(), candidates.end(), [&](const Candidate& a, const Candidate& b) {
     return a.bound > b.bound || (a.bound == b.bound && blocks_[a.block].index < blocks_[b.block].index);
   });
+  constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
   double best = -std::numeric_limits<double>::infinity();
-  std::size_t best_slot = 0;  // candidate * kBlockVoxels + voxel
-  std::vector<double> values(kChunk * kBlockVoxels);
-  for (std::size_t start = 0; start < candidates.size() && candidates[start].bound >= best; start += kChunk) {
-    const std::size_t count = std::min(kChunk, candidates.size() - start);
-#pragma omp parallel for schedule(dynamic)
-    for (std::size_t slot = 0; slot < count * kBlockVoxels; ++slot) {
-      const Candidate& candidate = candidates[start + slot / kBlockVoxels];
-      const int l = static_cast<int>(slot % kBlockVoxels);
-      const Block& block = blocks_[candidate.block];
-      values[slot] = block.first[l] == block.first[l + 1] || candidate.bound < best
-                         ? -std::numeric_limits<double>::infinity()
-                         : average(sums, field, candidate.block, l);
-    }
-    for (std::size_t slot = 0; slot < count * kBlockVoxels; ++slot)
-      if (values[slot] > best) {
-        best = values[slot];
-        best_slot = start * kBlockVoxels + slot;
+  std::size_t best_slot = kNone;  // candidate * kBlockVoxels + voxel
+  const auto better = [](double value, std::size_t slot, double than, std::size_t than_slot) {
+    return value > than || (value == than && slot < than_slot);
+  };
+  std::atomic<std::size_t> next{0};
+#pragma omp parallel
+  {
+    for (std::size_t c = next++; c < candidates.size(); c = next++) {
+      double shared_best;
+#pragma omp atomic read
+      shared_best = best;
+      if (candidates[c].bound < shared_best) break;  // and so are all later candidates
+      const Block& block = blocks_[candidates[c].block];
+      double block_best = -std::numeric_limits<double>::infinity();
+      std::size_t block_slot = kNone;
+      for (int l = 0; l < kBlockVoxels; ++l) {
+        if (block.first[l] == block.first[l + 1]) continue;
+        const double value = average(sums, field, candidates[c].block, l);
+        if (better(value, c * kBlockVoxels + l, block_best, block_slot)) {
+          block_best = value;
+          block_slot = c * kBlockVoxels + l;
+        }
       }
+#pragma omp critical(needlefem_ball_maximum)
+      if (better(block_best, block_slot, best, best_slot)) {
+        best = block_best;
+        best_slot = block_slot;
+      }
+    }
   }
+  if (best_slot == kNone) throw std::invalid_argument("critical distance: no tissue points");
   const Block& block = blocks_[candidates[best_slot / kBlockVoxels].block];
   const int l = static_cast<int>(best_slot % kBlockVoxels);
   return {best, centre_of({kBlock * block.index[0] + l / (kBlock * kBlock), kBlock * block.index[1] + (l / kBlock) % kBlock,
