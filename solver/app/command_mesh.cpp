@@ -26,6 +26,21 @@ nlohmann::json volume_comparison(double value_m3, double reference_m3) {
   return {{"mm3", value_m3 * kMm3PerM3}, {"relative_difference", (value_m3 - reference_m3) / reference_m3}};
 }
 
+nlohmann::json to_json(const ElementSizeStats& s) {
+  return {{"tets", s.tets}, {"min", s.min}, {"median", s.median}, {"max", s.max}};
+}
+
+// The sizes aimed at near the needle (scene_mesher.cpp) and those measured on the mesh.
+nlohmann::json to_json(const NeedleGrading& g) {
+  return {{"refinement_level", g.refinement_level},
+          {"edge_radius_mm", g.edge_radius_mm},
+          {"target_mm", {{"edge", g.edge_target_mm}, {"surface", g.surface_target_mm}, {"core", g.core_mm}}},
+          {"grading_distance_mm", g.grading_distance_mm},
+          {"edge_curves", g.edge_curves},
+          {"needle_edge_element_mm", to_json(g.edge_elements)},
+          {"cavity_element_mm", to_json(g.cavity_elements)}};
+}
+
 nlohmann::json mesh_report(const Case& c, const SceneModel& scene, const Partition& partition, double total_s) {
   nlohmann::json report;
   report["case_file"] = c.origin();
@@ -63,6 +78,7 @@ nlohmann::json mesh_report(const Case& c, const SceneModel& scene, const Partiti
                          {"naive_interface_nodes", partition.naive_interface_nodes},
                          {"metis_edge_cut", partition.edge_cut},
                          {"max_imbalance", partition.max_imbalance}};
+  if (!scene.user_mesh) report["grading"] = to_json(scene.info.grading);
   report["high_order_optimisation"] = scene.info.high_order_optimisation;
   report["seconds"] = {{"meshing", scene.info.seconds}, {"total", total_s}};
   return report;

@@ -96,6 +96,12 @@ std::vector<KeySpec> build_schema() {
            "Tip fillet radius tau: an arc in the side profile tangent to the bevel line and the opposite "
            "generator; tau = radius gives the fully rounded (hemispherical) biopsy-style tip; 0 = sharp",
            false),
+      real("needle.edge_radius_um", 50.0, 0.0, 1000.0,
+           "Bevel tip: radius rho of the rounding of the bevel-cylinder and fillet-cylinder edges (capped by the "
+           "fillet). A ground needle's edge is not sharp: its radius is a few to some tens of micrometres. The "
+           "contact needle is rounded with it (its normal is then continuous where the tissue presses on an "
+           "edge) and the mesh is graded to resolve it (element size rho / 2^mesh.refinement_level on the "
+           "edges)"),
       real("needle.shaft_mm", 0.1, 0.0, 100.0, "Straight shaft behind the bevel heel (or behind the neck)"),
       real("needle.head_length_mm", 3.5, 0.0, 100.0, "Compliant tip: magnetised head length L (cylinder + cone)"),
       real("needle.neck_length_mm", 1.0, 0.0, 100.0, "Compliant tip: neck (hinge) length l"),
@@ -178,7 +184,8 @@ std::vector<KeySpec> build_schema() {
       integer("mesh.seed", 1, 0, 1000000, "Seed of gmsh's random factor, fixed for deterministic meshes"),
       integer("mesh.refinement_level", 0, 0, 4,
               "Mesh refinement near the needle: each level halves every element size near the needle (its "
-              "surface and edges); `needlefem converge` runs three consecutive levels"),
+              "surface and edges; the graded zone keeps its extent), and the block scene's element size; "
+              "`needlefem converge` runs three consecutive levels"),
 
       // --- time integration (SUNDIALS IDA) and Newton-matrix solves (PETSc KSP) -------------
       real("integration.relative_tolerance", 1e-4, 0.0, 1.0,
@@ -272,10 +279,6 @@ std::vector<KeySpec> build_schema() {
            "s: the normal penalty is smoothed (C1, quadratic) over the first s h_face / c of penetration, "
            "i.e. below the pressure s mu0 / 2; 0 gives the plain kink (physics/contact/penalty_contact.hpp)",
            false),
-      real("contact.edge_rounding", 0.25, 1e-3, 0.999,
-           "f: the rigid bevel needle's bevel-cylinder and fillet-cylinder edges are rounded with the radius "
-           "min(fillet, f r) so its normal is continuous where the tissue presses on them "
-           "(physics/contact/needle_obstacle.hpp)"),
       real("contact.elastic_slip", 0.005, 0.0, 1.0,
            "Return-map friction: the elastic slip s0 a sticking point may make before it slides, per contact "
            "face size (Abaqus's default 0.005); the stick stiffness is mu p / s0"),

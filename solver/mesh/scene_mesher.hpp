@@ -10,6 +10,7 @@
 //            block: "x_min" ... "z_max"
 #pragma once
 
+#include <cstddef>
 #include <filesystem>
 #include <string>
 
@@ -18,6 +19,26 @@ namespace needlefem {
 class Case;
 struct CompliantTip;
 
+// Sizes of the tissue elements next to the needle, each the mean edge length of a tet
+// (corner nodes), over the tissue tets with a corner on the given entities (millimetres).
+struct ElementSizeStats {
+  std::size_t tets = 0;
+  double min = 0, median = 0, max = 0;
+};
+
+// The mesh sizes near the needle that the scene mesher aimed at, and what it got.
+struct NeedleGrading {
+  int refinement_level = 0;
+  double edge_radius_mm = 0;           // ρ = min(τ, needle.edge_radius_um); 0 without sharp edges
+  double edge_target_mm = 0;           // element size aimed at on the sharp edges
+  double surface_target_mm = 0;        // ... on the cavity surface
+  double core_mm = 0;                  // ... where the grading meets the core size
+  double grading_distance_mm = 0;      // distance over which the sizes grow to the core size
+  int edge_curves = 0;                 // sharp edges of the cavity that the edge grading uses
+  ElementSizeStats edge_elements;      // tissue tets touching those edges
+  ElementSizeStats cavity_elements;    // tissue tets touching the cavity surface
+};
+
 struct SceneMeshInfo {
   std::string needle_description;  // empty for the block scene
   double needle_cad_volume_m3 = 0;       // from the OpenCASCADE model
@@ -25,6 +46,7 @@ struct SceneMeshInfo {
   double domain_volume_m3 = 0;           // cube or block without the cavity: the bounding solid
   double seconds = 0;
   std::string high_order_optimisation;  // which gmsh optimisation passes ran, and misses
+  NeedleGrading grading;                // brain-tip scene only (block: refinement level only)
 };
 
 // Throws CaseError for impossible geometry (naming the violated rule) and std::runtime_error

@@ -182,7 +182,9 @@ nlohmann::json summary_json(const Case& c, const material::Material* material, c
     s["mesh"] = {{"nodes", scene->mesh.nodes.size()},
                  {"tets", scene->mesh.tet_count()},
                  {"element", scene->mesh.nodes_per_tet == 10 ? "TET10" : "TET4"},
-                 {"msh_file", scene->msh_file.string()}};
+                 {"msh_file", scene->msh_file.string()},
+                 {"refinement_level", c.integer("mesh.refinement_level")},
+                 {"needle_edge_element_mm", scene->info.grading.edge_elements.median}};
   s["files"] = {{"result", "result.h5"}, {"xdmf", "result.xdmf"}, {"history", "history.csv"}};
   s["case"] = c.to_json();
   return s;

@@ -23,7 +23,7 @@ const double alpha = 20.0 * kPi / 180.0;
 BevelTip bevel_tip() { return {r, alpha, tau, shaft}; }
 BevelTip rounded_tip() { return {r, alpha, r, shaft}; }
 const NeedleMotion kMotion{1e-3, kPi, 0.1, 0.0};  // 1 mm/s, 180 deg/s for 0.1 s
-constexpr double kEdgeRounding = 0.25;              // the case default: edge radius r/4
+constexpr double kEdgeRadius = 50e-6;               // m, the case default needle.edge_radius_um
 
 Point3 add(const Point3& a, const Point3& b, double s = 1.0) { return {a[0] + s * b[0], a[1] + s * b[1], a[2] + s * b[2]}; }
 Point3 unit(const Point3& a) {
@@ -59,19 +59,41 @@ std::vector<SurfacePoint> bevel_surface_points(double rho) {
            unit(add(bevel_normal, cylinder_normal))}};
 }
 
-// The edge radius is f r, capped by the fillet (the core's fillet would go negative), and the
-// rounded tip has no edge; f outside (0, 1) would leave no core.
-TEST(NeedleObstacle, EdgeRadiusIsTheRoundingTimesTheRadiusCappedByTheFillet) {
-  EXPECT_DOUBLE_EQ(RigidNeedle(bevel_tip(), kMotion, 0.1).edge_radius(), 0.1 * r);
-  EXPECT_DOUBLE_EQ(RigidNeedle(bevel_tip(), kMotion, 0.9).edge_radius(), tau);
-  EXPECT_DOUBLE_EQ(RigidNeedle(rounded_tip(), kMotion, kEdgeRounding).edge_radius(), 0.0);
+// The edge radius is the case's length, capped by the fillet (the core's fillet would go
+// negative); the rounded tip has no edge, and a radius <= 0 leaves the edge sharp (an error).
+TEST(NeedleObstacle, EdgeRadiusIsTheCaseLengthCappedByTheFillet) {
+  EXPECT_DOUBLE_EQ(RigidNeedle(bevel_tip(), kMotion, 30e-6).edge_radius(), 30e-6);
+  EXPECT_DOUBLE_EQ(RigidNeedle(bevel_tip(), kMotion, 0.4e-3).edge_radius(), tau);
+  EXPECT_DOUBLE_EQ(RigidNeedle(rounded_tip(), kMotion, kEdgeRadius).edge_radius(), 0.0);
   EXPECT_THROW(RigidNeedle(bevel_tip(), kMotion, 0.0), std::invalid_argument);
-  EXPECT_THROW(RigidNeedle(bevel_tip(), kMotion, 1.0), std::invalid_argument);
+  EXPECT_THROW(RigidNeedle(bevel_tip(), kMotion, -1e-6), std::invalid_argument);
+}
+
+// Near the rounded bevel-cylinder edge the needle is the core's edge point p swept by a ball of
+// radius rho: a point p + s u with u in the edge's normal cone (u = unit(a n_bevel + b n_cylinder),
+// a, b >= 0) has p as its closest core point, so its gap is the closed form s - rho and its normal
+// u, for every edge radius.
+TEST(NeedleObstacle, GapNearTheEdgeIsTheRoundedEdgesClosedForm) {
+  const Point3 bevel_normal{std::cos(alpha), 0.0, std::sin(alpha)};
+  const double theta = 0.4;  // the edge point of bevel_surface_points
+  const Point3 cylinder_normal{std::cos(theta), std::sin(theta), 0.0};
+  for (double rho : {10e-6, 25e-6, 50e-6, 100e-6}) {
+    const RigidNeedle needle(bevel_tip(), kMotion, rho);
+    const double re = r - rho, xe = re * std::cos(theta);
+    const Point3 p{xe, re * std::sin(theta), core(rho).profile_top(xe)};
+    for (double a : {0.0, 0.3, 1.0, 3.0})
+      for (double s : {0.5 * rho, rho, 1.2 * rho, rho + 20e-6}) {
+        const Point3 u = unit(add(add({0.0, 0.0, 0.0}, bevel_normal, a), cylinder_normal));
+        const ObstacleProjection g = needle.project_in_needle_frame(add(p, u, s));
+        EXPECT_NEAR(g.gap, s - rho, 1e-14) << "rho " << rho << " a " << a << " s " << s;
+        for (int i = 0; i < 3; ++i) EXPECT_NEAR(g.normal[i], u[i], 1e-8) << "rho " << rho << " a " << a << " s " << s;
+      }
+  }
 }
 
 TEST(NeedleObstacle, GapOfPointsAtKnownDistancesFromEachFace) {
-  const RigidNeedle needle(bevel_tip(), kMotion, kEdgeRounding);
-  EXPECT_DOUBLE_EQ(needle.edge_radius(), kEdgeRounding * r);
+  const RigidNeedle needle(bevel_tip(), kMotion, kEdgeRadius);
+  EXPECT_DOUBLE_EQ(needle.edge_radius(), kEdgeRadius);
   for (const auto& s : bevel_surface_points(needle.edge_radius()))
     for (double d : {-2e-6, 0.0, 1e-6, 2e-5}) {
       const ObstacleProjection p = needle.project_in_needle_frame(add(s.x, s.normal, d));
@@ -91,7 +113,7 @@ TEST(NeedleObstacle, GapOfPointsAtKnownDistancesFromEachFace) {
 // Across the edge's bisector, at a penetration shallower than the edge radius, the normal turns
 // smoothly from one face's to the other's (a sharp edge would switch it in one jump).
 TEST(NeedleObstacle, NormalIsContinuousAcrossTheEdge) {
-  const RigidNeedle needle(bevel_tip(), kMotion, kEdgeRounding);
+  const RigidNeedle needle(bevel_tip(), kMotion, kEdgeRadius);
   const double rho = needle.edge_radius();
   const auto edge = bevel_surface_points(rho)[3];
   const Point3 bevel_normal{std::cos(alpha), 0.0, std::sin(alpha)}, cylinder_normal{std::cos(0.4), std::sin(0.4), 0.0};
@@ -107,7 +129,7 @@ TEST(NeedleObstacle, NormalIsContinuousAcrossTheEdge) {
 }
 
 TEST(NeedleObstacle, RoundedTipIsCapsule) {
-  const RigidNeedle needle(rounded_tip(), kMotion, kEdgeRounding);
+  const RigidNeedle needle(rounded_tip(), kMotion, kEdgeRadius);
   const Point3 dir = unit({0.3, -0.4, 0.8});
   for (double d : {-1e-5, 0.0, 3e-5}) {
     const ObstacleProjection cap = needle.project_in_needle_frame(add({0.0, 0.0, shaft}, dir, r + d));
@@ -138,7 +160,7 @@ void expect_derivatives(const RigidNeedle& needle, const Point3& x, const char* 
 }
 
 TEST(NeedleObstacle, NormalAndItsGradientAreDerivativesOfTheGap) {
-  const RigidNeedle needle(bevel_tip(), kMotion, kEdgeRounding);
+  const RigidNeedle needle(bevel_tip(), kMotion, kEdgeRadius);
   for (const auto& s : bevel_surface_points(needle.edge_radius()))
     for (double d : {-3e-6, 4e-6, 5e-5}) expect_derivatives(needle, add(s.x, s.normal, d), s.face);
   // Outside the edge off the bisector (still in its normal wedge): the closest point slides along
@@ -155,13 +177,13 @@ TEST(NeedleObstacle, NormalAndItsGradientAreDerivativesOfTheGap) {
   const Point3 fillet_edge{x, (r - rho) * std::sin(theta), z};
   EXPECT_NEAR(needle.project_in_needle_frame(add(fillet_edge, bisector, 3e-5)).gap, 3e-5 - rho, 1e-15);
   expect_derivatives(needle, add(add(fillet_edge, bisector, 3e-5), {0.0, 0.0, 1.0}, 3e-6), "fillet edge");
-  const RigidNeedle rounded(rounded_tip(), kMotion, kEdgeRounding);
+  const RigidNeedle rounded(rounded_tip(), kMotion, kEdgeRadius);
   expect_derivatives(rounded, {1e-4, -2e-4, shaft + 0.5e-3}, "hemisphere");
   expect_derivatives(rounded, {1e-4, -5.5e-4, -0.1e-3}, "rounded shaft");
 }
 
 TEST(NeedleObstacle, PoseVelocityAndItsGradientMatchTheMotion) {
-  const RigidNeedle needle(bevel_tip(), kMotion, kEdgeRounding);
+  const RigidNeedle needle(bevel_tip(), kMotion, kEdgeRadius);
   const Point3 x{0.3e-3, 0.45e-3, 0.4e-3};
   const double t = 0.03, dt = 1e-7;
   const ObstacleProjection p = needle.project(x, t);
@@ -211,7 +233,7 @@ TEST(NeedleObstacle, StartRampIsSmoothAndTheVelocityFollowsIt) {
   EXPECT_NEAR(ramped.elapsed(0.1), 0.1 - 0.005, 1e-15);
   EXPECT_EQ(ramped.speed_fraction(0.11), 0.0);
 
-  const RigidNeedle needle(bevel_tip(), ramped, kEdgeRounding);
+  const RigidNeedle needle(bevel_tip(), ramped, kEdgeRadius);
   const Point3 X{0.3e-3, 0.45e-3, 0.4e-3};
   const double t = 0.004;
   const Point3 x = needle.from_body(X, t);

@@ -32,7 +32,9 @@ NeedleContact::NeedleContact(const Case& input, const TetMesh& mesh, double refe
   if (tip.kind != NeedleTip::Kind::Bevel)
     throw input.error("contact.mode", "frictional contact needs a convex needle (needle.kind = \"bevel\"); the "
                                       "compliant tip's neck is not convex: use contact.mode = \"tied\"");
-  needle_ = std::make_shared<RigidNeedle>(tip.bevel, needle_motion_from_case(input), input.real("contact.edge_rounding"));
+  constexpr double kMPerUm = 1e-6;
+  needle_ = std::make_shared<RigidNeedle>(tip.bevel, needle_motion_from_case(input),
+                                          input.real("needle.edge_radius_um") * kMPerUm);
   ContactParameters parameters = contact_parameters_from_case(input, reference_modulus);
   parameters.reference_gap_offset = true;  // the cavity is meshed from the needle's shape
   smoothing_pressure_ = parameters.penalty_smoothing * reference_modulus;

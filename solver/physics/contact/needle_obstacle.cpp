@@ -73,15 +73,12 @@ ObstacleProjection from(const Candidate& c) {
 
 }  // namespace
 
-RigidNeedle::RigidNeedle(const BevelTip& tip, const NeedleMotion& motion, double edge_rounding)
-    : tip_(tip),
-      motion_(motion),
-      edge_radius_(tip.rounded() ? 0.0 : std::min(tip.fillet, edge_rounding * tip.radius)) {
+RigidNeedle::RigidNeedle(const BevelTip& tip, const NeedleMotion& motion, double edge_radius)
+    : tip_(tip), motion_(motion), edge_radius_(tip.rounded() ? 0.0 : std::min(tip.fillet, edge_radius)) {
   if (!(tip.radius > 0.0) || !(tip.shaft >= 0.0) || !(tip.fillet >= 0.0) ||
       (!tip.rounded() && !(tip.bevel_rad > 0.0 && tip.bevel_rad <= kPi / 2)))
     throw std::invalid_argument("RigidNeedle: needs radius > 0, shaft >= 0, fillet >= 0, bevel in (0, 90] deg");
-  if (!(edge_rounding > 0.0 && edge_rounding < 1.0))
-    throw std::invalid_argument("RigidNeedle: the edge rounding (edge radius per needle radius) must lie in (0, 1)");
+  if (!(edge_radius > 0.0)) throw std::invalid_argument("RigidNeedle: the edge radius must be positive");
   const auto violations = tip.violations();
   if (!violations.empty()) throw std::invalid_argument("RigidNeedle: " + violations.front().message);
   // Every face moved inwards by the edge radius ρ: radius and fillet shrink by ρ, the bevel line

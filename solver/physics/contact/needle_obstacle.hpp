@@ -12,9 +12,9 @@
 // in the x-z block) or the generator plane (G = 0). The rounded tip (τ = r) is the capsule
 // "ray {ξ = η = 0, ζ <= shaft} ⊕ ball(r)": g = |x - p| - r with p the closest point of the ray,
 // G = (I - n nᵀ - [ζ < shaft] e_z e_zᵀ)/|x - p|.
-// Edges: the sharp bevel-cylinder and fillet-cylinder edges are rounded with a radius
-// ρ = min(τ, f r), f = contact.edge_rounding (default 1/4: 80 µm for r = 0.32 mm, 125 µm for
-// r = 0.5 mm): the needle is the core C_ρ ⊕ ball(ρ), C_ρ the tip with every face moved inwards
+// Edges: the bevel-cylinder and fillet-cylinder edges are rounded with their physical radius
+// ρ = min(τ, needle.edge_radius_um) (default 50 µm; a ground needle's edge is a few to some tens
+// of µm, and the scene mesher grades the mesh to resolve it): the needle is the core C_ρ ⊕ ball(ρ), C_ρ the tip with every face moved inwards
 // by ρ (radius r - ρ, fillet τ - ρ, same fillet centre, bevel line moved by ρ), so
 //   g = g_core - ρ,  n and G those of the core at distance g + ρ.
 // Why: inside a sharp edge the nearest face switches across the edge's bisector, and the normal,
@@ -22,12 +22,10 @@
 // size (measured: IDA_CONV_FAIL with h -> 1e-14 on the 0.8 mm mesh at 0.9 ms). With the rounding
 // the normal is continuous for every point shallower than ρ. Points are deeper than the penalty
 // penetration (~p h/(c μ₀)) alone: faceted cavity faces start up to ~10 µm inside the needle on
-// the 0.8 mm mesh (reference_gap_offset hides the interference from the gap, not from the
-// projection), and at the small needles' tips the penetration reaches ~30 µm at 10 kPa on the
-// 0.4 mm mesh. Measured: ρ = r/50 stopped at 33 ms and r/10 ran to 92 ms on the 0.8 mm mesh; on
-// paper 001's 0.4 mm grid r/10 (32 µm for r = 0.32 mm) left 8 of 24 designs stopping with
-// IDA_CONV_FAIL, r/4 completed 6 of those 8, and all 24 with the study cases' looser GMRES
-// tolerance (integration.krylov_tolerance). The price is a needle a little smaller than its
+// a 0.8 mm mesh (reference_gap_offset hides the interference from the gap, not from the
+// projection). Both shrink with the element size at the edge, which is why the rounding needs the
+// graded mesh: on paper 001's uniform 0.4 mm core a radius of r/10 (32 µm for r = 0.32 mm) left 8
+// of 24 designs stopping with IDA_CONV_FAIL and r/4 was needed (the former contact.edge_rounding). The price is a needle a little smaller than its
 // meshed cavity along the edges (by ρ(1/sin(θ/2) - 1) at an edge of dihedral angle θ); its effect
 // on the maxima is in cases/README.md.
 // Both A and B are convex, hence so is C, and the closest point is unique outside C:
@@ -67,9 +65,9 @@ namespace needlefem::contact {
 
 class RigidNeedle final : public RigidObstacle {
  public:
-  // edge_rounding = ρ / r before the cap ρ <= τ (case key contact.edge_rounding). Throws
-  // std::invalid_argument for tips that break their validity rules.
-  RigidNeedle(const BevelTip& tip, const NeedleMotion& motion, double edge_rounding);
+  // edge_radius = ρ in metres before the cap ρ <= τ (case key needle.edge_radius_um). Throws
+  // std::invalid_argument for tips that break their validity rules and for ρ <= 0.
+  RigidNeedle(const BevelTip& tip, const NeedleMotion& motion, double edge_radius);
 
   ObstacleProjection project(const Point3& x, double t) const override;
   // Gap, normal and normal gradient in the needle frame (no velocity).
