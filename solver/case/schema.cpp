@@ -96,12 +96,13 @@ std::vector<KeySpec> build_schema() {
            "Tip fillet radius tau: an arc in the side profile tangent to the bevel line and the opposite "
            "generator; tau = radius gives the fully rounded (hemispherical) biopsy-style tip; 0 = sharp",
            false),
-      real("needle.edge_radius_um", 50.0, 0.0, 1000.0,
+      real("needle.edge_radius_um", 100.0, 0.0, 1000.0,
            "Bevel tip: radius rho of the rounding of the bevel-cylinder and fillet-cylinder edges (capped by the "
-           "fillet). A ground needle's edge is not sharp: its radius is a few to some tens of micrometres. The "
-           "contact needle is rounded with it (its normal is then continuous where the tissue presses on an "
-           "edge) and the mesh is graded to resolve it (element size rho / 2^mesh.refinement_level on the "
-           "edges)"),
+           "fillet). The contact needle is rounded with it (its normal is then continuous where the tissue "
+           "presses on an edge) and the mesh is graded to resolve it (element size rho / 2^mesh.refinement_level "
+           "on the edges). A ground needle's edge radius is a few to some tens of micrometres; the default is "
+           "the smallest radius with which the penalty contact's Newton iteration ran the default tip on the "
+           "graded mesh (50 stalled in the first millisecond; cases/README.md)"),
       real("needle.shaft_mm", 0.1, 0.0, 100.0, "Straight shaft behind the bevel heel (or behind the neck)"),
       real("needle.head_length_mm", 3.5, 0.0, 100.0, "Compliant tip: magnetised head length L (cylinder + cone)"),
       real("needle.neck_length_mm", 1.0, 0.0, 100.0, "Compliant tip: neck (hinge) length l"),

@@ -167,8 +167,8 @@ void set_mesh_options(const Case& c) {
 //     h = h_e + (h_core - h_e) d / D,   h_e = kEdgeSizePerRadius ρ / 2^L
 //   surface (all faces of the cavity):
 //     h = h_s + (h_core - h_s) d / D,   h_s = kSurfaceSizePerCore h_core / 2^L
-// both capped at h_core beyond D = h_core / kGrowth. h_e = ρ: with 2ρ (50 µm, r = 0.5 mm, 20°,
-// 0.25 mm) the contact Newton iteration stalled at 0.29 ms; with ρ it ran on. D is a physical length, the same at every
+// both capped at h_core beyond D = h_core / kGrowth. h_e = ρ at level 0 (quadratic elements
+// span the rounding's arc in about one element). D is a physical length, the same at every
 // level, so the graded zone keeps its extent while every size near the needle halves per level;
 // the size grows by at most a factor 1 + kGrowth from one element layer to the next.
 constexpr double kEdgeSizePerRadius = 1.0;

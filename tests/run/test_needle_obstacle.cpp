@@ -23,7 +23,7 @@ const double alpha = 20.0 * kPi / 180.0;
 BevelTip bevel_tip() { return {r, alpha, tau, shaft}; }
 BevelTip rounded_tip() { return {r, alpha, r, shaft}; }
 const NeedleMotion kMotion{1e-3, kPi, 0.1, 0.0};  // 1 mm/s, 180 deg/s for 0.1 s
-constexpr double kEdgeRadius = 50e-6;               // m, the case default needle.edge_radius_um
+constexpr double kEdgeRadius = 100e-6;              // m, the case default needle.edge_radius_um
 
 Point3 add(const Point3& a, const Point3& b, double s = 1.0) { return {a[0] + s * b[0], a[1] + s * b[1], a[2] + s * b[2]}; }
 Point3 unit(const Point3& a) {

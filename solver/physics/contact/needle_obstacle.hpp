@@ -13,8 +13,9 @@
 // "ray {ξ = η = 0, ζ <= shaft} ⊕ ball(r)": g = |x - p| - r with p the closest point of the ray,
 // G = (I - n nᵀ - [ζ < shaft] e_z e_zᵀ)/|x - p|.
 // Edges: the bevel-cylinder and fillet-cylinder edges are rounded with their physical radius
-// ρ = min(τ, needle.edge_radius_um) (default 50 µm; a ground needle's edge is a few to some tens
-// of µm, and the scene mesher grades the mesh to resolve it): the needle is the core C_ρ ⊕ ball(ρ), C_ρ the tip with every face moved inwards
+// ρ = min(τ, needle.edge_radius_um) (default 100 µm; a ground needle's edge is a few to some tens
+// of µm, but 50 µm stalled the contact Newton iteration of the default tip on the graded mesh;
+// the scene mesher grades the mesh to resolve ρ): the needle is the core C_ρ ⊕ ball(ρ), C_ρ the tip with every face moved inwards
 // by ρ (radius r - ρ, fillet τ - ρ, same fillet centre, bevel line moved by ρ), so
 //   g = g_core - ρ,  n and G those of the core at distance g + ρ.
 // Why: inside a sharp edge the nearest face switches across the edge's bisector, and the normal,
