@@ -164,14 +164,17 @@ void set_mesh_options(const Case& c) {
 // The element size is the minimum of the core/outer Box field and two Threshold fields on the
 // distance d to the cavity:
 //   edges (the sharp curves of the cavity: bevel-cylinder, fillet-cylinder):
-//     h = h_e + (h_core - h_e) d / D,   h_e = kEdgeSizePerRadius ρ / 2^L
+//     h = h_e + (h_core - h_e) d / D,   h_e = max(kEdgeSizePerRadius ρ, kEdgeSizePerCore h_core) / 2^L
 //   surface (all faces of the cavity):
 //     h = h_s + (h_core - h_s) d / D,   h_s = kSurfaceSizePerCore h_core / 2^L
-// both capped at h_core beyond D = h_core / kGrowth. h_e = ρ at level 0 (quadratic elements
-// span the rounding's arc in about one element). D is a physical length, the same at every
+// both capped at h_core beyond D = h_core / kGrowth. h_e = ρ at level 0 on the paper's 0.4 mm
+// core (quadratic elements span the rounding's arc in about one element); a coarser core keeps
+// its edges at a quarter of its size at level 0, so a coarse mesh stays cheap and refinement
+// levels still halve every size. D is a physical length, the same at every
 // level, so the graded zone keeps its extent while every size near the needle halves per level;
 // the size grows by at most a factor 1 + kGrowth from one element layer to the next.
 constexpr double kEdgeSizePerRadius = 1.0;
+constexpr double kEdgeSizePerCore = 0.25;
 constexpr double kSurfaceSizePerCore = 0.5;
 constexpr double kGrowth = 0.4;
 double level_factor(const Case& c) { return std::ldexp(1.0, -static_cast<int>(c.integer("mesh.refinement_level"))); }
@@ -239,7 +242,9 @@ std::vector<int> add_needle_grading(const Case& c, const BevelTip& tip, const st
   if (!(grading.edge_radius_mm > 0)) edges.clear();  // a sharp tip (τ = 0): its edges stay sharp
   grading.edge_curves = static_cast<int>(edges.size());
   if (edges.empty()) return fields;
-  grading.edge_target_mm = std::min(grading.surface_target_mm, kEdgeSizePerRadius * grading.edge_radius_mm * factor);
+  grading.edge_target_mm = std::min(
+      grading.surface_target_mm,
+      std::max(kEdgeSizePerRadius * grading.edge_radius_mm, kEdgeSizePerCore * h_core) * factor);
   double length = 0;
   for (int e : edges) {
     double mass = 0;

@@ -190,6 +190,7 @@ ContactParameters contact_parameters_from_case(const Case& input, double referen
   p.rate_strengthening = input.real("contact.rate_strengthening_s_per_m");
   p.slip_velocity_regularisation = input.real("contact.slip_velocity_regularisation_mm_per_s") * kMetresPerMm;
   p.reference_modulus = reference_modulus;
+  p.face_size_scale = std::ldexp(1.0, static_cast<int>(input.integer("mesh.refinement_level")));
   p.friction_tangent =
       input.text("contact.friction_tangent") == "consistent" ? FrictionTangent::consistent : FrictionTangent::secant;
   p.friction_law = input.text("contact.friction_law") == "velocity" ? FrictionLaw::velocity : FrictionLaw::return_map;
@@ -232,7 +233,7 @@ PenaltyContact::PenaltyContact(const TetMesh& mesh, const std::string& surface,
       face.points.push_back(point);
     }
     if (!(area > 0.0)) throw std::runtime_error(fmt::format("contact surface '{}': face {} has no area", surface, f));
-    const double size = std::sqrt(2.0 * area);
+    const double size = parameters.face_size_scale * std::sqrt(2.0 * area);
     face.penalty = parameters.penalty_factor * parameters.reference_modulus / size;
     face.smoothing_depth = parameters.penalty_smoothing * size / parameters.penalty_factor;
     face.elastic_slip = parameters.elastic_slip * size;

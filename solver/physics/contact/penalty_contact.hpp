@@ -10,8 +10,12 @@
 // Normal (penalty, C¹-smoothed at first touch): with the penetration d = ⟨-g⟩,
 //   p_N = ε_N d² / (2δ)            for d < δ,
 //   p_N = ε_N (d - δ/2)            for d >= δ,
-//   ε_N = c μ₀ / h_face,   δ = s h_face / c,   h_face = √(2 A_face)  (the leg of the right
-//   isosceles triangle of the face's reference area), c = penalty_factor, s = penalty_smoothing,
+//   ε_N = c μ₀ / h_face,   δ = s h_face / c,   h_face = 2^L √(2 A_face)  (the leg of the right
+//   isosceles triangle of the face's reference area, times 2 per mesh.refinement_level L: each
+//   level halves the faces near the needle, and the enforcement stays that of level 0, so a
+//   refinement study measures the discretisation at one contact law instead of a penalty that
+//   doubles with every level and stalls Newton; measured: the default tip at level 1 stopped with
+//   IDA_CONV_FAIL at 0.08 ms with the face's own size), c = penalty_factor, s = penalty_smoothing,
 //   μ₀ the tissue's instantaneous shear modulus. The penalty interpenetration d = p_N h/(c μ₀)
 //   (+ δ/2) is then the same fraction of the local element size on every mesh, and the error it
 //   causes falls as 1/c (δ too; tests/contact: Hertz indentation at c = 10, 100 and 1000). The
@@ -129,6 +133,9 @@ struct ContactParameters {
   double elastic_slip = 0.005;                // e in s₀ = e h_face (return map)
   double rate_strengthening = 0.0;            // β, s/m (return map; the case default is 2)
   double reference_modulus = 0.0;             // μ₀, Pa
+  // Factor on h_face in ε_N, δ and s₀: 2^mesh.refinement_level, so that refining the mesh near
+  // the needle keeps the contact's enforcement of the level-0 mesh (see h_face above).
+  double face_size_scale = 1.0;
   double slip_velocity_regularisation = 1e-5; // ε_v, m/s
   FrictionTangent friction_tangent = FrictionTangent::consistent;  // velocity law only
   FrictionLaw friction_law = FrictionLaw::return_map;
