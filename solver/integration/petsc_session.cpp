@@ -1,12 +1,13 @@
 #include "integration/petsc_session.hpp"
 
+#include <cctype>
 #include <stdexcept>
 
 #include <fmt/core.h>
 
 namespace needlefem {
 
-PetscSession::PetscSession(const std::vector<std::string>& options) {
+PetscSession::PetscSession(const std::vector<std::string>& options) : options_(options) {
   PetscBool running = PETSC_FALSE;
   petsc_check(PetscInitialized(&running), "PetscInitialized");
   if (running) {
@@ -29,6 +30,19 @@ PetscSession::PetscSession(const std::vector<std::string>& options) {
 
 PetscSession::~PetscSession() {
   if (owns_) PetscFinalize();
+}
+
+void PetscSession::require_options_used() const {
+  for (const auto& word : options_) {
+    // An option is "-name"; a word like "-1e-8" or "-.5" is the value of the one before it.
+    if (word.size() < 2 || word[0] != '-' || std::isdigit(static_cast<unsigned char>(word[1])) || word[1] == '.')
+      continue;
+    PetscBool used = PETSC_FALSE;
+    petsc_check(PetscOptionsUsed(nullptr, word.c_str(), &used), "PetscOptionsUsed");
+    if (!used)
+      throw std::runtime_error(fmt::format("PETSc option '{}' (after --) was not used by any solver; misspelt, or "
+                                           "not for this solver?", word));
+  }
 }
 
 void petsc_check(PetscErrorCode code, std::string_view what) {

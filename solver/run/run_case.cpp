@@ -323,6 +323,9 @@ nlohmann::json run_case(const Case& c, const RunOptions& options) {
       record.output_times_written = file.completed_times();
       record.output_s += seconds_since(output_start);
       record.integration_s = integration_s;
+      // By the first output every solver has been set up and has solved (the initial-rates
+      // probe, the needle's fields): an option after -- that none of them read is a mistake.
+      if (t == times.front()) petsc.require_options_used();
       print_progress(options.progress, t, times.back(), record.counters, integration_s);
     }
     file.close();
