@@ -1,10 +1,15 @@
 #include "run/run_case.hpp"
 
+#include <fcntl.h>
+#include <sys/file.h>
 #include <sys/resource.h>
+#include <unistd.h>
 
 #include <array>
 #include <chrono>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <limits>
 #include <memory>
@@ -49,6 +54,34 @@ double peak_rss_mb() {
   getrusage(RUSAGE_SELF, &usage);
   return static_cast<double>(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
 }
+
+// A run owns its output directory: an exclusive flock on the directory itself, held until the
+// run ends (the kernel drops it when the process dies, so no stale lock is left behind). Taken
+// before anything in the directory is removed or truncated, so a second run into the same --out
+// is refused without touching the first run's result.h5 or summary.json.
+class OutputDirectoryLock {
+ public:
+  explicit OutputDirectoryLock(const std::filesystem::path& dir)
+      : fd_(::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC)) {
+    if (fd_ < 0) throw std::runtime_error(fmt::format("{}: cannot open the output directory ({})", dir.string(),
+                                                      std::strerror(errno)));
+    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+      const int error = errno;
+      ::close(fd_);
+      if (error == EWOULDBLOCK)
+        throw std::runtime_error(fmt::format("{}: another run is writing into this output directory; choose another "
+                                             "--out or wait until it ends", dir.string()));
+      throw std::runtime_error(fmt::format("{}: cannot lock the output directory ({})", dir.string(),
+                                           std::strerror(error)));
+    }
+  }
+  ~OutputDirectoryLock() { ::close(fd_); }
+  OutputDirectoryLock(const OutputDirectoryLock&) = delete;
+  OutputDirectoryLock& operator=(const OutputDirectoryLock&) = delete;
+
+ private:
+  int fd_;
+};
 
 void write_json_atomically(const std::filesystem::path& file, const nlohmann::json& json) {
   const auto partial = file.string() + ".partial";
@@ -204,6 +237,7 @@ void print_progress(std::FILE* stream, double t, double end, const IdaCounters& 
 nlohmann::json run_case(const Case& c, const RunOptions& options) {
   const auto start = Clock::now();
   std::filesystem::create_directories(options.out_dir);
+  const OutputDirectoryLock owned(options.out_dir);
   const auto summary_file = options.out_dir / "summary.json";
   std::filesystem::remove(summary_file);  // a stale summary must not describe this run
 
