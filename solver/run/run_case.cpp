@@ -236,6 +236,7 @@ void print_progress(std::FILE* stream, double t, double end, const IdaCounters& 
 
 nlohmann::json run_case(const Case& c, const RunOptions& options) {
   const auto start = Clock::now();
+  const std::vector<double> times = output_times(c);  // its case errors before anything is written
   std::filesystem::create_directories(options.out_dir);
   const OutputDirectoryLock owned(options.out_dir);
   const auto summary_file = options.out_dir / "summary.json";
@@ -269,7 +270,6 @@ nlohmann::json run_case(const Case& c, const RunOptions& options) {
     const fields::TissueFieldEvaluator evaluator(*system, mesh, *material, c.real("output.density_kg_per_m3"));
     safety = std::make_unique<SafetyReport>(c, mesh, evaluator);
 
-    const std::vector<double> times = output_times(c);
     std::vector<output::FieldSpec> specs = field_specs();
     if (needle) for (auto& spec : NeedleOutput::field_specs()) specs.push_back(std::move(spec));
     output::ResultFile file(options.out_dir / "result.h5", mesh, c.to_toml(), specs, times.size());
