@@ -24,6 +24,7 @@
 #include "integration/petsc_session.hpp"
 #include "model/scene_model.hpp"
 #include "output/result_file.hpp"
+#include "output/xdmf_text.hpp"
 #include "physics/fields/tissue_fields.hpp"
 #include "physics/material/material.hpp"
 #include "physics/mechanics/mechanics_system.hpp"
@@ -84,13 +85,7 @@ class OutputDirectoryLock {
 };
 
 void write_json_atomically(const std::filesystem::path& file, const nlohmann::json& json) {
-  const auto partial = file.string() + ".partial";
-  {
-    std::ofstream stream(partial);
-    stream << json.dump(2) << "\n";
-    if (!stream) throw std::runtime_error("cannot write " + partial);
-  }
-  std::filesystem::rename(partial, file);
+  output::replace_file_atomically(file, json.dump(2) + "\n");
 }
 
 
