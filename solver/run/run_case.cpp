@@ -27,6 +27,7 @@
 #include "output/xdmf_text.hpp"
 #include "physics/fields/tissue_fields.hpp"
 #include "physics/material/material.hpp"
+#include "physics/mechanics/dirichlet.hpp"
 #include "physics/mechanics/mechanics_system.hpp"
 #include "run/needle_output.hpp"
 #include "run/output_schedule.hpp"
@@ -312,8 +313,14 @@ nlohmann::json run_case(const Case& c, const RunOptions& options) {
       record.rejections = system->rejections();
       record.factorisations = system->factorisations();
     };
+    const double inversion_s = (c.text("scene.kind") == "block" ? mechanics::block_inversion_time_s(c) : std::nullopt)
+                                   .value_or(std::numeric_limits<double>::infinity());
     for (const double t : times) {
       const auto step_start = Clock::now();
+      if (t >= inversion_s)
+        throw c.error("block.applied_gradient",
+                      fmt::format("the applied field turns the block inside out at t = {:.4g} s (det F <= 0); the "
+                                  "output times before it are kept", inversion_s));
       try {
         if (t > integrator.time()) integrator.advance_to(t, report_step);
       } catch (const std::exception&) {
