@@ -70,6 +70,12 @@ nlohmann::json run(const MagnetOptions& o) {
   auto& results = out["results"] = nlohmann::json::array();
   for (double angle_deg : o.turning_angles_deg) {
     const double flux = steering::flux_density_for_turning_angle_t(hinge, angle_deg * deg, gap_area, phi);
+    // A permanent magnet's field never exceeds its residual flux density Br, at any distance:
+    // a turning angle that needs more cannot be had from it, and a number above Br is no answer.
+    if (!(flux < o.residual_flux_density_t))
+      throw std::invalid_argument(fmt::format("--turning-angle-deg {:.6g}: needs a flux density of {:.3g} T, above the "
+                                              "magnet's residual flux density Br = {:.3g} T", angle_deg, flux,
+                                              o.residual_flux_density_t));
     nlohmann::json row = {{"turning_angle_deg", angle_deg},
                           {"flux_density_t", flux},
                           {"force_n", steering::gap_force_n(flux, gap_area)}};

@@ -1,6 +1,7 @@
 // `needlefem material-test`: drives one material through a homogeneous history at a single
 // material point (no mesh) and prints CSV on stdout; the material's full description, with
 // its instantaneous and long-term shear moduli, goes to stderr.
+#include <cmath>
 #include <map>
 #include <memory>
 #include <optional>
@@ -50,8 +51,16 @@ void run(MaterialTestOptions options) {
   options.program.history = kHistories.at(options.history);
   options.program.target = options.target.value_or(default_target(options.program.history));
 
-  fmt::print(stderr, "# material {}\n", tissue.description());
   const auto rows = material::run_material_point(tissue, options.program);
+  // Every column finite (the strain rate of an instantaneous history is inf by definition, never NaN).
+  for (const auto& row : rows)
+    for (const double value : {row.time_s, row.stretch, row.shear, row.nominal_stress_pa, row.cauchy_stress_pa,
+                               row.log_strain, std::isnan(row.strain_rate_per_s) ? row.strain_rate_per_s : 0.0})
+      if (!std::isfinite(value))
+        throw std::invalid_argument(fmt::format("material-test: --to {:.6g}: the {} history gives a non-finite value "
+                                                "(NaN or inf); choose a smaller --to",
+                                                options.program.target, options.history));
+  fmt::print(stderr, "# material {}\n", tissue.description());
   fmt::print("time_s,stretch,shear,nominal_stress_pa,cauchy_stress_pa,log_strain,strain_rate_per_s\n");
   for (const auto& row : rows)
     fmt::print("{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g}\n", row.time_s, row.stretch, row.shear,

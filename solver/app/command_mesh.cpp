@@ -5,7 +5,6 @@
 //                         METIS partition effect, timings, and the resolved case.
 #include <algorithm>
 #include <chrono>
-#include <fstream>
 
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
@@ -15,6 +14,7 @@
 #include "model/partition.hpp"
 #include "model/scene_model.hpp"
 #include "output/result_file.hpp"
+#include "output/xdmf_text.hpp"
 
 namespace needlefem::app {
 
@@ -85,9 +85,7 @@ nlohmann::json mesh_report(const Case& c, const SceneModel& scene, const Partiti
 }
 
 void write_json(const std::filesystem::path& file, const nlohmann::json& json) {
-  const auto partial = file.string() + ".partial";
-  std::ofstream(partial) << json.dump(2) << "\n";
-  std::filesystem::rename(partial, file);
+  output::replace_file_atomically(file, json.dump(2) + "\n");
 }
 
 void run_mesh(const CaseOptions& options) {

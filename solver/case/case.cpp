@@ -183,12 +183,23 @@ Case Case::parse(const std::string& toml_text, const std::string& origin, const 
   return Case(origin, base, std::move(values));
 }
 
-Case Case::load(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
+std::string read_input_file(const std::filesystem::path& file, const std::string& what) {
+  std::error_code error;
+  if (std::filesystem::is_directory(file, error))
+    throw CaseError(fmt::format("{}: is a directory, not a {}", file.string(), what));
   std::ifstream in(file);
-  if (!in) throw CaseError(fmt::format("{}: cannot open case file ({})", file.string(), std::strerror(errno)));
+  if (!in) throw CaseError(fmt::format("{}: cannot open {} ({})", file.string(), what, std::strerror(errno)));
   std::stringstream text;
   text << in.rdbuf();
-  return parse(text.str(), file.string(), overrides);
+  if (in.bad()) throw CaseError(fmt::format("{}: cannot read {}", file.string(), what));
+  std::string content = text.str();
+  if (content.find_first_not_of(" \t\r\n") == std::string::npos)
+    throw CaseError(fmt::format("{}: empty {}", file.string(), what));
+  return content;
+}
+
+Case Case::load(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
+  return parse(read_input_file(file, "case file"), file.string(), overrides);
 }
 
 namespace {

@@ -20,6 +20,12 @@ class CaseError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// The text of an input file the user named (`what`: "case file", "sweep file"). Refuses with a
+// CaseError "FILE: REASON" a path that cannot be opened, a directory, or a file holding nothing
+// but white space ("empty case file"): none of them is a case, and running the defaults instead
+// would be silent.
+std::string read_input_file(const std::filesystem::path& file, const std::string& what);
+
 class Case {
  public:
   // Reads and validates a TOML case file, then applies "key=value" overrides (from --set).

@@ -72,7 +72,7 @@ std::vector<KeySpec> build_schema() {
              "brain-tip: tissue cube with a needle tip immersed at the entry face (paper 001); "
              "block: a box with per-face conditions for homogeneous verification problems"),
       text("scene.mesh_file", "",
-           "A user-supplied gmsh .msh (millimetres, second-order tets) with the same physical names, "
+           "A user-supplied gmsh .msh (millimetres; tets of the order mesh.order gives) with the same physical names, "
            "used instead of generating one; relative to the case file"),
 
       // --- tissue cube of the brain-tip scene -------------------------------------------------

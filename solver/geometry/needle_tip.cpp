@@ -159,10 +159,12 @@ std::vector<RuleViolation> brain_tip_scene_violations(const Case& c, const Needl
   if (c.real("tissue.core_element_mm") > c.real("tissue.outer_element_mm"))
     out.push_back({"core-finer-than-outside",
                    fmt::format("core element size {} exceeds the outer element size {}", mm(core_element),
-                               mm(c.real("tissue.outer_element_mm") / kMmPerM))});
+                               mm(c.real("tissue.outer_element_mm") / kMmPerM)),
+                   "tissue.core_element_mm"});
   if (core >= edge)
     out.push_back({"core-inside-cube",
-                   fmt::format("core width {} must be smaller than the cube edge {}", mm(core), mm(edge))});
+                   fmt::format("core width {} must be smaller than the cube edge {}", mm(core), mm(edge)),
+                   "tissue.core_width_mm"});
   if (tip.radius() >= core / 2)
     out.push_back({"core-contains-needle", fmt::format("needle radius {} must be smaller than half the core "
                                                        "width ({})", mm(tip.radius()), mm(core / 2))});
@@ -180,7 +182,8 @@ void require_valid_scene(const Case& c) {
   if (violations.empty()) return;
   std::string reasons;
   for (const auto& v : violations) reasons += fmt::format("{}rule '{}': {}", reasons.empty() ? "" : "; ", v.rule, v.message);
-  throw c.error("needle", "impossible geometry: " + reasons);
+  // Under the key of the first rule broken (a tissue rule names its tissue key, not `needle`).
+  throw c.error(violations.front().key, "impossible geometry: " + reasons);
 }
 
 }  // namespace needlefem

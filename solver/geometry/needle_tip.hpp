@@ -21,10 +21,12 @@ namespace needlefem {
 
 class Case;
 
-// A violated geometric validity rule: its stable name and a sentence with the numbers.
+// A violated geometric validity rule: its stable name, a sentence with the numbers, and the case
+// key (or table) the rule is about, under which an error reports it.
 struct RuleViolation {
   std::string rule;
   std::string message;
+  std::string key = "needle";
 };
 
 struct BevelTip {

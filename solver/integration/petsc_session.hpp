@@ -23,8 +23,14 @@ class PetscSession {
   // True if this session initialised PETSc (and will finalise it).
   bool owns_petsc() const { return owns_; }
 
+  // Throws std::runtime_error naming the first of the user's options that no PETSc object has
+  // read (a misspelt option is otherwise ignored without a word). Call once every solver has
+  // been set up and used (PETSc reads some options only at the first solve).
+  void require_options_used() const;
+
  private:
   bool owns_ = false;
+  std::vector<std::string> options_;
   // PETSc keeps pointers to argc/argv for the whole run: they live here.
   std::vector<std::string> words_;
   std::vector<char*> argv_;

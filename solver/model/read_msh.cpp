@@ -1,6 +1,14 @@
 #include "model/read_msh.hpp"
 
+#include <fcntl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <new>
 #include <map>
 #include <stdexcept>
 #include <unordered_map>
@@ -88,7 +96,64 @@ std::vector<PhysicalGroup> physical_groups(int dim, const std::string& unnamed_p
   return out;
 }
 
+// Reads the whole file with gmsh (nodes and every element block), throwing what gmsh throws.
+void read_with_gmsh(const std::filesystem::path& file) {
+  const GmshSession session("probe");
+  gmsh::open(file.string());
+  std::vector<std::size_t> node_tags;
+  std::vector<double> coords, parametric;
+  gmsh::model::mesh::getNodes(node_tags, coords, parametric, -1, -1, false, false);
+  std::vector<int> types;
+  std::vector<std::vector<std::size_t>> element_tags, element_nodes;
+  gmsh::model::mesh::getElements(types, element_tags, element_nodes, -1, -1);
+}
+
 }  // namespace
+
+void require_readable_msh(const std::filesystem::path& file) {
+  int pipe_fds[2];
+  if (::pipe2(pipe_fds, O_CLOEXEC) != 0) throw std::runtime_error(file.string() + ": cannot check the mesh (pipe)");
+  std::fflush(nullptr);  // nothing buffered may be written twice
+  const pid_t child = ::fork();
+  if (child < 0) {
+    ::close(pipe_fds[0]);
+    ::close(pipe_fds[1]);
+    throw std::runtime_error(file.string() + ": cannot check the mesh (fork)");
+  }
+  if (child == 0) {
+    ::close(pipe_fds[0]);
+    std::string message;
+    try {
+      read_with_gmsh(file);
+    } catch (const std::string& gmsh_message) {
+      message = "gmsh: " + gmsh_message;
+    } catch (const std::bad_alloc&) {
+      message = "gmsh ran out of memory reading it (a damaged count in $Nodes or $Elements?)";
+    } catch (const std::exception& e) {
+      message = e.what();
+    }
+    if (!message.empty()) {
+      [[maybe_unused]] const auto written = ::write(pipe_fds[1], message.data(), message.size());
+    }
+    ::_exit(message.empty() ? 0 : 1);  // no atexit handlers, no flushing the parent's buffers
+  }
+  ::close(pipe_fds[1]);
+  std::string message;
+  char buffer[512];
+  for (ssize_t n; (n = ::read(pipe_fds[0], buffer, sizeof buffer)) != 0;) {
+    if (n > 0) message.append(buffer, static_cast<std::size_t>(n));
+    else if (errno != EINTR) break;
+  }
+  ::close(pipe_fds[0]);
+  int status = 0;
+  while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return;
+  if (WIFSIGNALED(status))
+    throw std::runtime_error(fmt::format("{}: gmsh's reader crashed on it ({}); is the .msh damaged?", file.string(),
+                                         strsignal(WTERMSIG(status))));
+  throw std::runtime_error(fmt::format("{}: {}", file.string(), message.empty() ? "gmsh cannot read it" : message));
+}
 
 TetMesh read_msh(const std::filesystem::path& file) {
   auto fail = [&](const std::string& reason) { return std::runtime_error(file.string() + ": " + reason); };

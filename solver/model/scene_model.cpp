@@ -19,7 +19,14 @@ SceneModel load_scene_model(const Case& c, const std::filesystem::path& out_dir)
     scene.msh_file = out_dir / "mesh.msh";
     scene.info = build_scene_mesh(c, scene.msh_file);
   }
+  if (scene.user_mesh) require_readable_msh(scene.msh_file);
   scene.mesh = read_msh(scene.msh_file);
+  // The case's element order describes the run; a user mesh of the other order would silently
+  // make it a run of that order instead.
+  if (const long order = scene.mesh.nodes_per_tet == 10 ? 2 : 1; scene.user_mesh && order != c.integer("mesh.order"))
+    throw c.error("scene.mesh_file", fmt::format("'{}' has {}-node (order {}) tetrahedra but mesh.order = {}",
+                                                 scene.msh_file.string(), scene.mesh.nodes_per_tet, order,
+                                                 c.integer("mesh.order")));
   scene.quality = measure_quality(scene.mesh);
   return scene;
 }

@@ -1,5 +1,6 @@
 #include "output/xdmf_text.hpp"
 
+#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -91,14 +92,22 @@ std::string xdmf_text(const XdmfDocument& document, const std::vector<double>& t
 
 void replace_file_atomically(const std::filesystem::path& path, const std::string& text) {
   const std::filesystem::path temporary = path.string() + ".tmp";
+  // The system's reason, as a clause: "no space left on device".
+  auto reason = [](int error) {
+    std::string text = std::strerror(error);
+    if (!text.empty()) text[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(text[0])));
+    return text;
+  };
   std::FILE* file = std::fopen(temporary.c_str(), "wb");
-  if (!file) throw std::runtime_error(fmt::format("{}: cannot create: {}", temporary.string(), std::strerror(errno)));
-  const bool written = std::fwrite(text.data(), 1, text.size(), file) == text.size();
-  if (std::fclose(file) != 0 || !written)
-    throw std::runtime_error(fmt::format("{}: write failed", temporary.string()));
-  if (std::rename(temporary.c_str(), path.c_str()) != 0)
-    throw std::runtime_error(fmt::format("{}: cannot rename to {}: {}", temporary.string(),
-                                         path.string(), std::strerror(errno)));
+  if (!file) throw std::runtime_error(fmt::format("{}: cannot write: {}", path.string(), reason(errno)));
+  int error = 0;
+  if (std::fwrite(text.data(), 1, text.size(), file) != text.size() || std::fflush(file) != 0) error = errno;
+  if (std::fclose(file) != 0 && error == 0) error = errno;  // a full disk may only show at close
+  if (error == 0 && std::rename(temporary.c_str(), path.c_str()) != 0) error = errno;
+  if (error != 0) {
+    std::remove(temporary.c_str());  // the old file stays, and no temporary is left behind
+    throw std::runtime_error(fmt::format("{}: cannot write: {}", path.string(), reason(error)));
+  }
 }
 
 }  // namespace needlefem::output

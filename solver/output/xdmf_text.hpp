@@ -49,7 +49,9 @@ struct XdmfDocument {
 std::string xdmf_text(const XdmfDocument& document, const std::vector<double>& times);
 
 // Writes `text` to a temporary file next to `path`, then renames it over `path`, so a
-// reader (or a process killed meanwhile) never sees a half-written file.
+// reader (or a process killed meanwhile) never sees a half-written file. On failure the
+// temporary is removed and std::runtime_error says "PATH: cannot write: REASON" with the
+// system's reason (e.g. "no space left on device").
 void replace_file_atomically(const std::filesystem::path& path, const std::string& text);
 
 }  // namespace needlefem::output

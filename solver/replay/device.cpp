@@ -20,7 +20,12 @@ std::unique_ptr<HapticDevice> make_device(const std::string& address) {
       throw std::invalid_argument("driver '" + address + "': expected udp://HOST:PORT");
     std::string host = rest.substr(0, colon);
     if (host.size() > 2 && host.front() == '[' && host.back() == ']') host = host.substr(1, host.size() - 2);  // [::1]
-    return std::make_unique<UdpDevice>(host, rest.substr(colon + 1));
+    const std::string port = rest.substr(colon + 1);
+    // getaddrinfo would take a service name, and wraps a number above 65535 to another port.
+    const bool digits = port.size() <= 5 && port.find_first_not_of("0123456789") == std::string::npos;
+    if (!digits || std::stoi(port) < 1 || std::stoi(port) > 65535)
+      throw std::invalid_argument("driver '" + address + "': port '" + port + "' is not a UDP port (1-65535)");
+    return std::make_unique<UdpDevice>(host, port);
   }
   if (address.starts_with(openhaptics_scheme)) {
 #ifdef NEEDLEFEM_HAVE_OPENHAPTICS

@@ -13,6 +13,8 @@
 #include <system_error>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "replay/sampling.hpp"
 
 namespace needlefem::replay {
@@ -99,9 +101,11 @@ nlohmann::json percentiles_us(const Percentiles& p) {
 
 ReplayReport replay(const Trajectory& trajectory, HapticDevice& device, const ReplayOptions& options,
                     const std::atomic<bool>& stop) {
-  if (!(options.rate_hz > 0.0) || !std::isfinite(options.rate_hz))
-    throw std::invalid_argument("replay: rate must be positive");
-  if (!(options.force_limit_n > 0.0)) throw std::invalid_argument("replay: force limit must be positive");
+  if (!(options.rate_hz > 0.0) || !(options.rate_hz <= max_rate_hz))
+    throw std::invalid_argument(fmt::format("replay: --rate {:.6g} Hz is outside (0, {:.6g}] Hz, the rates this loop "
+                                            "can pace", options.rate_hz, max_rate_hz));
+  if (!(options.force_limit_n > 0.0) || !std::isfinite(options.force_limit_n))
+    throw std::invalid_argument("replay: force limit must be positive and finite");
   if (!(options.duration_s >= 0.0)) throw std::invalid_argument("replay: duration must be >= 0");
   validate_trajectory(trajectory, "replay trajectory");
 

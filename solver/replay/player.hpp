@@ -23,6 +23,10 @@
 
 namespace needlefem::replay {
 
+// The fastest rate the loop paces: a 10 us period, still 100 histogram bins (100 ns) and well
+// above any haptic device's servo rate (1-10 kHz). A faster rate would round to a zero period.
+inline constexpr double max_rate_hz = 100'000.0;
+
 struct ReplayOptions {
   double rate_hz = 1000.0;       // device servo rate
   double force_limit_n = 3.3;    // device's maximum force

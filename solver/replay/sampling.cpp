@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace needlefem::replay {
 
@@ -12,9 +13,17 @@ namespace {
 // blend differs from slerp by O(w^2) ~ 1e-12 there.
 constexpr double slerp_linear_threshold_rad = 1e-6;
 
-Vec3 lerp(const Vec3& a, const Vec3& b, double s) {
-  return {a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1]), a[2] + s * (b[2] - a[2])};
+// (1 - s) a + s b cannot form b - a, which overflows for samples of opposite sign near the
+// largest double; the bracket by the samples catches the one rounding overflow left (to +-inf).
+double lerp(double a, double b, double s) {
+  const auto [low, high] = std::minmax(a, b);
+  return std::clamp((1.0 - s) * a + s * b, low, high);
 }
+
+Vec3 lerp(const Vec3& a, const Vec3& b, double s) { return {lerp(a[0], b[0], s), lerp(a[1], b[1], s), lerp(a[2], b[2], s)}; }
+
+// |v| without overflow or underflow in the squares (std::hypot scales by the largest component).
+double magnitude(const Vec3& v) { return std::hypot(v[0], v[1], v[2]); }
 
 }  // namespace
 
@@ -57,9 +66,17 @@ TrajectoryState sample(const Trajectory& t, double time_s) {
 }
 
 bool clamp_magnitude(Vec3& v, double limit) {
-  const double magnitude = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-  if (!(magnitude > limit)) return false;
-  for (double& c : v) c *= limit / magnitude;
+  const double length = magnitude(v);
+  if (!(length > limit)) return false;
+  // Divide by the largest component first, so a huge vector becomes a unit-sized one with its
+  // direction, then scale to the limit. Rounding can leave |v| an ulp or two above the limit:
+  // the limit is a hard bound, so shrink by a few ulps until it holds (at most a few passes).
+  const double largest = std::max({std::abs(v[0]), std::abs(v[1]), std::abs(v[2])});
+  for (double& c : v) c /= largest;
+  const double scale = limit / magnitude(v);
+  for (double& c : v) c *= scale;
+  while (magnitude(v) > limit || std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) > limit)
+    for (double& c : v) c *= 1.0 - 4.0 * std::numeric_limits<double>::epsilon();
   return true;
 }
 

@@ -8,6 +8,9 @@
 //     normalised linear blend when w is tiny (sin(w) -> 0), where both agree to O(w^2).
 // Times outside [t_0, t_n] hold the end samples.
 // The force limit clamps the magnitude, keeping the direction: f -> f * min(1, F_max/|f|).
+// Any finite samples give finite values (the interpolation never forms v_{i+1} - v_i, and
+// |f| is computed without squaring overflow), and the clamped |f| never exceeds F_max, also
+// after rounding: F_max is a hard bound for the device.
 #pragma once
 
 #include "replay/trajectory.hpp"
@@ -26,7 +29,8 @@ Quaternion slerp(const Quaternion& from, Quaternion to, double fraction);
 // The trajectory's state at time_s (binary search for the bracketing samples).
 TrajectoryState sample(const Trajectory& trajectory, double time_s);
 
-// Scales vector down to magnitude limit if it is longer; returns true when it did.
+// Scales vector down to magnitude <= limit (a hard bound) if it is longer, keeping its
+// direction; returns true when it did. vector must be finite, limit finite and > 0.
 bool clamp_magnitude(Vec3& vector, double limit);
 
 }  // namespace needlefem::replay

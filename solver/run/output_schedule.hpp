@@ -12,7 +12,8 @@ class Case;
 namespace needlefem::run {
 
 double history_end(const Case& c);
-// Ascending, starting at 0 and ending at history_end(c).
+// Ascending, starting at 0 and ending at history_end(c). Throws CaseError (output.interval_s)
+// for more than 1e4 output times.
 std::vector<double> output_times(const Case& c);
 
 }  // namespace needlefem::run

@@ -1,10 +1,15 @@
 #include "run/run_case.hpp"
 
+#include <fcntl.h>
+#include <sys/file.h>
 #include <sys/resource.h>
+#include <unistd.h>
 
 #include <array>
 #include <chrono>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <limits>
 #include <memory>
@@ -19,8 +24,10 @@
 #include "integration/petsc_session.hpp"
 #include "model/scene_model.hpp"
 #include "output/result_file.hpp"
+#include "output/xdmf_text.hpp"
 #include "physics/fields/tissue_fields.hpp"
 #include "physics/material/material.hpp"
+#include "physics/mechanics/dirichlet.hpp"
 #include "physics/mechanics/mechanics_system.hpp"
 #include "run/needle_output.hpp"
 #include "run/output_schedule.hpp"
@@ -50,14 +57,36 @@ double peak_rss_mb() {
   return static_cast<double>(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
 }
 
-void write_json_atomically(const std::filesystem::path& file, const nlohmann::json& json) {
-  const auto partial = file.string() + ".partial";
-  {
-    std::ofstream stream(partial);
-    stream << json.dump(2) << "\n";
-    if (!stream) throw std::runtime_error("cannot write " + partial);
+// A run owns its output directory: an exclusive flock on the directory itself, held until the
+// run ends (the kernel drops it when the process dies, so no stale lock is left behind). Taken
+// before anything in the directory is removed or truncated, so a second run into the same --out
+// is refused without touching the first run's result.h5 or summary.json.
+class OutputDirectoryLock {
+ public:
+  explicit OutputDirectoryLock(const std::filesystem::path& dir)
+      : fd_(::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC)) {
+    if (fd_ < 0) throw std::runtime_error(fmt::format("{}: cannot open the output directory ({})", dir.string(),
+                                                      std::strerror(errno)));
+    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+      const int error = errno;
+      ::close(fd_);
+      if (error == EWOULDBLOCK)
+        throw std::runtime_error(fmt::format("{}: another run is writing into this output directory; choose another "
+                                             "--out or wait until it ends", dir.string()));
+      throw std::runtime_error(fmt::format("{}: cannot lock the output directory ({})", dir.string(),
+                                           std::strerror(error)));
+    }
   }
-  std::filesystem::rename(partial, file);
+  ~OutputDirectoryLock() { ::close(fd_); }
+  OutputDirectoryLock(const OutputDirectoryLock&) = delete;
+  OutputDirectoryLock& operator=(const OutputDirectoryLock&) = delete;
+
+ private:
+  int fd_;
+};
+
+void write_json_atomically(const std::filesystem::path& file, const nlohmann::json& json) {
+  output::replace_file_atomically(file, json.dump(2) + "\n");
 }
 
 
@@ -203,7 +232,9 @@ void print_progress(std::FILE* stream, double t, double end, const IdaCounters& 
 
 nlohmann::json run_case(const Case& c, const RunOptions& options) {
   const auto start = Clock::now();
+  const std::vector<double> times = output_times(c);  // its case errors before anything is written
   std::filesystem::create_directories(options.out_dir);
+  const OutputDirectoryLock owned(options.out_dir);
   const auto summary_file = options.out_dir / "summary.json";
   std::filesystem::remove(summary_file);  // a stale summary must not describe this run
 
@@ -235,7 +266,6 @@ nlohmann::json run_case(const Case& c, const RunOptions& options) {
     const fields::TissueFieldEvaluator evaluator(*system, mesh, *material, c.real("output.density_kg_per_m3"));
     safety = std::make_unique<SafetyReport>(c, mesh, evaluator);
 
-    const std::vector<double> times = output_times(c);
     std::vector<output::FieldSpec> specs = field_specs();
     if (needle) for (auto& spec : NeedleOutput::field_specs()) specs.push_back(std::move(spec));
     output::ResultFile file(options.out_dir / "result.h5", mesh, c.to_toml(), specs, times.size());
@@ -283,8 +313,14 @@ nlohmann::json run_case(const Case& c, const RunOptions& options) {
       record.rejections = system->rejections();
       record.factorisations = system->factorisations();
     };
+    const double inversion_s = (c.text("scene.kind") == "block" ? mechanics::block_inversion_time_s(c) : std::nullopt)
+                                   .value_or(std::numeric_limits<double>::infinity());
     for (const double t : times) {
       const auto step_start = Clock::now();
+      if (t >= inversion_s)
+        throw c.error("block.applied_gradient",
+                      fmt::format("the applied field turns the block inside out at t = {:.4g} s (det F <= 0); the "
+                                  "output times before it are kept", inversion_s));
       try {
         if (t > integrator.time()) integrator.advance_to(t, report_step);
       } catch (const std::exception&) {
@@ -323,6 +359,9 @@ nlohmann::json run_case(const Case& c, const RunOptions& options) {
       record.output_times_written = file.completed_times();
       record.output_s += seconds_since(output_start);
       record.integration_s = integration_s;
+      // By the first output every solver has been set up and has solved (the initial-rates
+      // probe, the needle's fields): an option after -- that none of them read is a mistake.
+      if (t == times.front()) petsc.require_options_used();
       print_progress(options.progress, t, times.back(), record.counters, integration_s);
     }
     file.close();

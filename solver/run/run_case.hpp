@@ -6,7 +6,8 @@
 //   energy) and a progress line on `progress`; finally DIR/summary.json (written atomically).
 // A failure (IDA giving up, an inverted element) leaves every completed output time readable
 // in result.h5/.xdmf and history.csv, writes summary.json with "status": "failed" and the
-// reason, and rethrows.
+// reason, and rethrows. The run holds an exclusive lock on DIR from before it changes anything
+// there; a second run into a DIR that a live run holds is refused and leaves it untouched.
 #pragma once
 
 #include <cstdio>

@@ -145,6 +145,9 @@ nlohmann::json SafetyReport::summary(const std::array<MaximumOverTime, fields::k
     if (!std::isfinite(point.value)) continue;  // no output time completed
     thresholds[limit.name] = {{"limit", limit.limit}, {"max", point.value}, {"pass", point.value <= limit.limit}};
     const OverTime& max = over_time_[i];
+    // A run that failed while writing an output time has its point maxima but not this time's
+    // critical-distance values: the failure's summary then says what it has, not a second error.
+    if (max.field_at_critical_distance.empty()) continue;
     const auto at_time = [&](const fields::BallAverager& ball) {
       const fields::LocatedValue v = ball.maximum(max.field_at_critical_distance);
       return nlohmann::json{{"value", v.value}, {"time_s", max.critical_distance.time_s},

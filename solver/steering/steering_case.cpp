@@ -85,6 +85,14 @@ SteeringSetup steering_setup_from_case(const Case& input) {
   SteeringRun& run = setup.run;
   run.insertion_depth_m = input.real("steering.insertion_depth_mm") * mm;
   run.depth_step_m = input.real("steering.depth_step_mm") * mm;
+  // One path sample (~160 bytes) and one magnet solve per step: 1e5 steps is far finer than the
+  // kinematic model resolves; 1e-7 mm over 40 mm once asked for tens of GB.
+  constexpr double max_steps = 1e5;
+  if (const double steps = run.insertion_depth_m / run.depth_step_m; steps > max_steps)
+    throw input.error("steering.depth_step_mm",
+                      fmt::format("{:.3g} mm over the {:.3g} mm insertion is {:.3g} steps, more than {:.0f} (use a "
+                                  "step of at least {:.3g} mm)", run.depth_step_m / mm, run.insertion_depth_m / mm,
+                                  steps, max_steps, run.insertion_depth_m / max_steps / mm));
   run.insertion_speed_m_per_s = input.real("steering.insertion_speed_mm_per_s") * mm;
   setup.schedule = schedule_from_case(input, model, run.insertion_speed_m_per_s);
 

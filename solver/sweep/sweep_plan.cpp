@@ -44,10 +44,10 @@ class SweepFile {
   }
 
   toml::table parse() const {
+    const std::string text = read_input_file(file_, "sweep file");
     try {
-      return toml::parse_file(file_.string());
+      return toml::parse(text, file_.string());
     } catch (const toml::parse_error& e) {
-      if (!fs::exists(file_)) throw CaseError(fmt::format("{}: cannot open sweep file", file_.string()));
       throw CaseError(fmt::format("{}:{}:{}: TOML syntax error: {}", file_.string(), e.source().begin.line,
                                   e.source().begin.column, e.description()));
     }
@@ -253,7 +253,7 @@ void absolute_mesh_file(FlatTable& flat, const fs::path& relative_to) {
 FlatTable base_case_table(const fs::path& base_case) {
   FlatTable flat;
   try {
-    flat = flatten_case(toml::parse_file(base_case.string()));
+    flat = flatten_case(toml::parse(read_input_file(base_case, "case file"), base_case.string()));
   } catch (const toml::parse_error& e) {
     throw CaseError(fmt::format("{}:{}:{}: TOML syntax error: {}", base_case.string(), e.source().begin.line,
                                 e.source().begin.column, e.description()));
@@ -313,6 +313,8 @@ SweepPlan load_sweep(const fs::path& sweep_file) {
   const fs::path sweep_dir = fs::absolute(sweep_file).parent_path();
   plan.base_case = (sweep_dir / base->get()).lexically_normal();
   if (!fs::exists(plan.base_case)) file.fail("base", fmt::format("cannot open {}", plan.base_case.string()));
+  if (fs::is_directory(plan.base_case))
+    file.fail("base", fmt::format("{} is a directory, not a case file", plan.base_case.string()));
   const FlatTable base_flat = base_case_table(plan.base_case);
 
   FlatTable fixed = file.flatten(root.get("set"), "set");

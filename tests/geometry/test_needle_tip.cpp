@@ -2,6 +2,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
+
+#include <fmt/format.h>
 
 #include "case/case.hpp"
 #include "geometry/needle_motion.hpp"
@@ -96,6 +99,20 @@ TEST(NeedleTip, RequireValidSceneListsEveryViolatedRule) {
     EXPECT_NE(m.find("bad.toml: key 'needle': impossible geometry"), std::string::npos) << m;
     EXPECT_NE(m.find("fillet-exceeds-radius"), std::string::npos) << m;
     EXPECT_NE(m.find("core-finer-than-outside"), std::string::npos) << m;
+  }
+}
+
+TEST(NeedleTip, TissueRulesAreReportedUnderTheirTissueKey) {
+  for (const auto& [toml, key] : {std::pair{"[tissue]\ncore_element_mm = 3", "tissue.core_element_mm"},
+                                  std::pair{"[tissue]\ncore_width_mm = 12", "tissue.core_width_mm"}}) {
+    try {
+      require_valid_scene(Case::parse(toml, "bad.toml"));
+      FAIL() << toml;
+    } catch (const CaseError& e) {
+      EXPECT_NE(std::string(e.what()).find(fmt::format("bad.toml: key '{}': impossible geometry", key)),
+                std::string::npos)
+          << e.what();
+    }
   }
 }
 

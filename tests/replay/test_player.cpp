@@ -58,6 +58,47 @@ TEST(Player, OnePassSendsEverySlotThenZeroForce) {
   EXPECT_FALSE(report.interrupted);
 }
 
+TEST(Player, HugeForcesAreSentFiniteAndClampedInTheirOwnDirection) {
+  // A constant 1e200 N along +x, then a +-1e308 swing: every packet finite, at most the limit,
+  // and a constant huge force arrives as the limit along +x (not 0 N, not NaN).
+  Trajectory t = testing::ramp_trajectory(0.02, 1.0);
+  for (std::size_t i = 0; i < t.size(); ++i) t.force_n[i] = {1e200, 0.0, 0.0};
+  t.force_n.back() = {-1e308, 1e308, 0.0};
+  t.torque_n_m.back() = {1e308, -1e308, 1e308};
+  t.torque_n_m[t.size() - 2] = {-1e308, 1e308, -1e308};
+  RecordingDevice device;
+  const std::atomic<bool> never{false};
+  ReplayOptions options;
+  options.force_limit_n = 3.3;
+  replay(t, device, options, never);
+  ASSERT_GT(device.frames.size(), 2u);
+  for (const DeviceFrame& f : device.frames) {
+    for (int c = 0; c < 3; ++c) {
+      ASSERT_TRUE(std::isfinite(f.force_n[c])) << f.trajectory_time_s;
+      ASSERT_TRUE(std::isfinite(f.torque_n_m[c])) << f.trajectory_time_s;
+      ASSERT_TRUE(std::isfinite(f.position_m[c])) << f.trajectory_time_s;
+    }
+    EXPECT_LE(magnitude(f.force_n), 3.3);
+  }
+  const DeviceFrame& first = device.frames.front();
+  EXPECT_TRUE(first.force_clamped);
+  EXPECT_DOUBLE_EQ(first.force_n[0], 3.3);
+}
+
+TEST(Player, RateBeyondWhatCanBePacedIsRefusedBeforeSending) {
+  // 1e10 Hz rounds to a zero period: once it sent nothing and reported success.
+  RecordingDevice device;
+  const std::atomic<bool> never{false};
+  ReplayOptions options;
+  options.rate_hz = 1e10;
+  EXPECT_THROW(replay(testing::ramp_trajectory(0.1), device, options, never), std::invalid_argument);
+  EXPECT_TRUE(device.frames.empty());
+  options.rate_hz = max_rate_hz;
+  options.duration_s = 0.001;
+  replay(testing::ramp_trajectory(0.1), device, options, never);
+  EXPECT_FALSE(device.frames.empty());
+}
+
 TEST(Player, DeadlinesAreAbsolute) {
   // Timestamps are start + k * period exactly: no drift however long the replay runs.
   const Trajectory t = testing::ramp_trajectory(0.2);

@@ -1,7 +1,9 @@
 // Interpolation between trajectory samples and the force clamp, against closed forms.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 
 #include "fixtures.hpp"
@@ -62,6 +64,54 @@ TEST(Sampling, ClampKeepsDirectionAndLimitsMagnitude) {
   const Vec3 unchanged = small;
   EXPECT_FALSE(clamp_magnitude(small, 3.3));
   EXPECT_EQ(small, unchanged);
+}
+
+// Finite but huge samples (a hostile trajectory file): interpolation stays finite and between
+// the samples, and the clamp brings any length to the limit along the vector's own direction.
+TEST(Sampling, HugeFiniteSamplesInterpolateToFiniteValues) {
+  Trajectory t = testing::ramp_trajectory(0.02, 1.0);
+  t.force_n = {{-1e308, 1e308, 0.0}, {1e308, -1e308, 0.0}, {1e308, 1e308, -1e308}};
+  t.torque_n_m = t.force_n;
+  t.position_m = t.force_n;
+  for (double time : {0.0, 0.0025, 0.005, 0.0137, 0.02}) {
+    const TrajectoryState s = sample(t, time);
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_TRUE(std::isfinite(s.force_n[c])) << time;
+      EXPECT_TRUE(std::isfinite(s.torque_n_m[c])) << time;
+      EXPECT_TRUE(std::isfinite(s.position_m[c])) << time;
+    }
+  }
+}
+
+TEST(Sampling, ClampOfAHugeVectorIsTheLimitInItsOwnDirection) {
+  for (const Vec3& huge : {Vec3{0.0, 0.0, 1e200}, Vec3{-1e308, 1e308, 0.0}, Vec3{1e308, 1e308, -1e308},
+                           Vec3{1.7e308, -3.0, 1e-300}}) {
+    Vec3 v = huge;
+    EXPECT_TRUE(clamp_magnitude(v, 3.3));
+    const double largest = std::max({std::abs(huge[0]), std::abs(huge[1]), std::abs(huge[2])});
+    for (int c = 0; c < 3; ++c) {
+      ASSERT_TRUE(std::isfinite(v[c]));
+      EXPECT_NEAR(v[c] / 3.3, (huge[c] / largest) / std::hypot(huge[0] / largest, huge[1] / largest, huge[2] / largest),
+                  1e-12);
+    }
+  }
+}
+
+TEST(Sampling, ClampedMagnitudeNeverExceedsTheLimitUnderRounding) {
+  // The limit is a hard bound: over many directions and limits, |clamped| <= limit exactly.
+  std::uint64_t state = 12345;
+  auto uniform = [&state] {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return static_cast<double>(state >> 11) * 0x1.0p-53;
+  };
+  for (int trial = 0; trial < 100000; ++trial) {
+    const double limit = 0.1 + 10.0 * uniform();
+    const double scale = std::pow(10.0, 300.0 * uniform() - 100.0);
+    Vec3 v{scale * (uniform() - 0.5), scale * (uniform() - 0.5), scale * (uniform() - 0.5)};
+    clamp_magnitude(v, limit);
+    ASSERT_LE(std::hypot(v[0], v[1], v[2]), limit) << "trial " << trial;
+    ASSERT_LE(std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]), limit) << "trial " << trial;
+  }
 }
 
 }  // namespace

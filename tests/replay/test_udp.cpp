@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "fixtures.hpp"
+#include "replay/device.hpp"
 #include "replay/player.hpp"
 #include "replay/udp_device.hpp"
 
@@ -114,6 +115,19 @@ TEST(UdpReplay, NobodyListeningDoesNotStopReplay) {
   EXPECT_EQ(report.frames_sent + report.dropped_frames, 301u);
   EXPECT_GT(device.refused_count(), 0u);
   EXPECT_EQ(report.failed_sends, device.refused_count());
+}
+
+TEST(UdpDriver, PortOutsideOneTo65535IsRefused) {
+  // getaddrinfo wraps 70000 to port 4464 and takes "http" as a service: neither is a UDP port here.
+  for (const char* port : {"70000", "65536", "0", "99999999999", "http", "-1"}) {
+    try {
+      make_device(std::string("udp://127.0.0.1:") + port);
+      FAIL() << "port " << port << " accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("is not a UDP port (1-65535)"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_NE(make_device("udp://127.0.0.1:65535"), nullptr);
 }
 
 TEST(ReplayCommand, CtrlCStopsWithZeroForceAndReports) {

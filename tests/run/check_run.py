@@ -19,6 +19,9 @@
              over the free nodes, so it needs the tight tolerances.
   failure    an inverting block: non-zero exit, exactly one error line, summary status
              "failed", and the output times completed before the failure readable.
+  inverted   a block whose applied field is inverted after a 1 us ramp: stops at the next output
+             time with one line naming block.applied_gradient (IDA once ground on with steps of
+             1e-21 s for half a minute, then reported IDA_CONV_FAIL).
 """
 import argparse
 import csv
@@ -238,6 +241,16 @@ def balance(args):
               f"t = {t:g} s: |needle force - fixed reactions| = {error:.2e} <= 1e-6 x {size:.4e} N")
 
 
+def inverted(args):
+    out = pathlib.Path(args.out)
+    result = run(args.exe, args.case, out, [])
+    errors = [line for line in result.stderr.splitlines() if line.startswith("needlefem: error:")]
+    check(result.returncode != 0 and len(errors) == 1, f"non-zero exit, one error line: {errors}")
+    check(any("key 'block.applied_gradient': the applied field turns the block inside out at t = 6.667e-07 s" in e
+              for e in errors), f"the error names the inverted applied field: {errors}")
+    check(json.load(open(out / "summary.json"))["output_times"] == 1, "the output at t = 0 is kept")
+
+
 def failure(args):
     out = pathlib.Path(args.out)
     result = run(args.exe, args.case, out, [])
@@ -258,12 +271,12 @@ def failure(args):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("scenario", choices=["block", "brain-tip", "balance", "failure"])
+    parser.add_argument("scenario", choices=["block", "brain-tip", "balance", "failure", "inverted"])
     parser.add_argument("--exe", required=True)
     parser.add_argument("--case", required=True)
     parser.add_argument("--out", required=True)
     args = parser.parse_args()
-    {"block": block, "brain-tip": brain_tip, "balance": balance, "failure": failure}[args.scenario](args)
+    {"block": block, "brain-tip": brain_tip, "balance": balance, "failure": failure, "inverted": inverted}[args.scenario](args)
     if failures:
         print(f"{len(failures)} check(s) failed", file=sys.stderr)
         return 1

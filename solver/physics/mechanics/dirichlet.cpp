@@ -47,6 +47,9 @@ class ConditionBuilder {
   std::map<int, PrescribedDof> by_dof_;
 };
 
+// The block's faces, two per axis (face f is normal to axis f / 2).
+const std::array<std::string, 6> kBlockFaces{"x_min", "x_max", "y_min", "y_max", "z_min", "z_max"};
+
 const DisplacementField kZeroField = [](const Point3&, double) { return Point3{0.0, 0.0, 0.0}; };
 
 }  // namespace
@@ -54,6 +57,45 @@ const DisplacementField kZeroField = [](const Point3&, double) { return Point3{0
 double ramp_then_hold(double t, double ramp_s) {
   if (ramp_s <= 0.0) return t >= 0.0 ? 1.0 : 0.0;
   return std::clamp(t / ramp_s, 0.0, 1.0);
+}
+
+std::optional<double> block_inversion_time_s(const Case& input) {
+  const std::vector<double> F = input.reals("block.applied_gradient");
+  bool full = false;                     // a "displacement" face imposes all of F
+  std::array<bool, 3> normal{};          // a "normal-displacement" face imposes F's diagonal on its axis
+  for (int f = 0; f < 6; ++f) {
+    const std::string condition = input.text("block." + kBlockFaces[f]);
+    full = full || condition == "displacement";
+    if (condition == "normal-displacement") normal[f / 2] = true;
+  }
+  // The largest value that must stay positive: det F(s) when all of F is imposed, else the
+  // stretch 1 + s (F_ii - 1) of each axis whose faces are pushed (at 0 a face meets its opposite).
+  auto inverted = [&](double s) {
+    std::array<double, 9> a{};
+    for (int n = 0; n < 9; ++n) a[n] = (n % 4 == 0 ? 1.0 : 0.0) + s * (F[n] - (n % 4 == 0 ? 1.0 : 0.0));
+    if (full)
+      return a[0] * (a[4] * a[8] - a[5] * a[7]) - a[1] * (a[3] * a[8] - a[5] * a[6]) +
+                 a[2] * (a[3] * a[7] - a[4] * a[6]) <= 0.0;
+    for (int i = 0; i < 3; ++i)
+      if (normal[i] && a[4 * i] <= 0.0) return true;
+    return false;
+  };
+  // det(I + s G) is a cubic in s, 1 at s = 0: scan for the first sign change, then bisect
+  // (1e3 slices step over only a root pair closer than 1e-3 of the ramp, a field that all but
+  // inverts the block anyway).
+  constexpr int slices = 1000;
+  double below = 0.0, above = -1.0;
+  for (int k = 1; k <= slices && above < 0.0; ++k) {
+    const double s = static_cast<double>(k) / slices;
+    (inverted(s) ? above : below) = s;
+  }
+  if (above < 0.0) return std::nullopt;
+  for (int i = 0; i < 60; ++i) {
+    const double mid = 0.5 * (below + above);
+    (inverted(mid) ? above : below) = mid;
+  }
+  const double ramp_s = input.real("loading.ramp_s");
+  return ramp_s > 0.0 ? above * ramp_s : 0.0;
 }
 
 DirichletConditions block_conditions(const Case& input, const TetMesh& mesh, const DofMap& map) {
@@ -71,14 +113,13 @@ DirichletConditions block_conditions(const Case& input, const TetMesh& mesh, con
       for (int J = 0; J < 3; ++J) u[i] += s * displacement_gradient[3 * i + J] * X[J];
     return u;
   });
-  const std::array<std::string, 6> faces{"x_min", "x_max", "y_min", "y_max", "z_min", "z_max"};
   for (int f = 0; f < 6; ++f) {
-    const std::string condition = input.text("block." + faces[f]);
+    const std::string condition = input.text("block." + kBlockFaces[f]);
     const int axis = f / 2;
-    if (condition == "fixed") builder.constrain_surface(faces[f], {0, 1, 2}, zero);
-    if (condition == "roller") builder.constrain_surface(faces[f], {axis}, zero);
-    if (condition == "normal-displacement") builder.constrain_surface(faces[f], {axis}, affine);
-    if (condition == "displacement") builder.constrain_surface(faces[f], {0, 1, 2}, affine);
+    if (condition == "fixed") builder.constrain_surface(kBlockFaces[f], {0, 1, 2}, zero);
+    if (condition == "roller") builder.constrain_surface(kBlockFaces[f], {axis}, zero);
+    if (condition == "normal-displacement") builder.constrain_surface(kBlockFaces[f], {axis}, affine);
+    if (condition == "displacement") builder.constrain_surface(kBlockFaces[f], {0, 1, 2}, affine);
   }
   return builder.finish();
 }

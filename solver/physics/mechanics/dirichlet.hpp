@@ -22,6 +22,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include "model/tet_mesh.hpp"
@@ -56,6 +57,11 @@ struct DirichletConditions {
 double ramp_then_hold(double t, double ramp_s);
 
 DirichletConditions block_conditions(const Case& input, const TetMesh& mesh, const DofMap& map);
+
+// The first time at which the block's applied field F(s) = I + s (F - I), s = ramp_then_hold(t),
+// has det F(s) <= 0 (it would turn the block inside out), or none. No elastic state exists past
+// it: a run stops there with a clear error instead of IDA shrinking its step to 1e-14 s.
+std::optional<double> block_inversion_time_s(const Case& input);
 DirichletConditions brain_tip_conditions(const Case& input, const TetMesh& mesh, const DofMap& map);
 // The conditions of the case's scene.kind.
 DirichletConditions scene_conditions(const Case& input, const TetMesh& mesh, const DofMap& map);
