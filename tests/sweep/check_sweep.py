@@ -237,9 +237,33 @@ def figures(args):
           f"the rendered field is max_over_time_log_strain at the last time ({shown} vs {field_max:.7g})")
 
 
+def steering(args):
+    """A brain-tip sweep's safety metrics and lateral force reach the table and the chart."""
+    out = pathlib.Path(args.out)
+    shutil.rmtree(out, ignore_errors=True)
+    process = subprocess.run([args.exe, "sweep", args.sweep, "--out", str(out), "--jobs", "1"],
+                             capture_output=True, text=True)
+    print(process.stdout[-2000:], process.stderr[-2000:])
+    check(process.returncode == 0, "the brain-tip sweep exits 0")
+    for r in read_csv(out):
+        check(r["status"] == "completed", f"{r['point']}: completed")
+        summary = json.loads((out / r["point"] / "summary.json").read_text())
+        check(float(r["needle_max_lateral_force_n"]) > 0, f"{r['point']}: lateral force {r['needle_max_lateral_force_n']} N")
+        for name in LIMITS:
+            cd = float(r[f"critical_distance_{name}"])
+            check(abs(cd - summary["safety"][name]["critical_distance"]["value"]) <= 1e-8 * cd,
+                  f"{r['point']}: critical_distance_{name} {cd:.6g} = the summary's (9 digits in the CSV)")
+            check(int(r[f"verdict_{name}"]) == int(cd <= LIMITS[name]), f"{r['point']}: verdict_{name}")
+    png = out / "safety_steering.png"
+    result = subprocess.run([sys.executable, args.figures, "safety-steering", str(out), "--png", str(png)],
+                            capture_output=True, text=True)
+    print(result.stdout, result.stderr[-2000:])
+    check(result.returncode == 0 and png_ok(png), "safety-steering chart written and not blank")
+
+
 def main():
     parser = argparse.ArgumentParser()
-    parser.add_argument("mode", choices=["resume", "bad", "figures"])
+    parser.add_argument("mode", choices=["resume", "bad", "figures", "steering"])
     parser.add_argument("--exe")
     parser.add_argument("--sweep")
     parser.add_argument("--out", required=True)
@@ -247,7 +271,7 @@ def main():
     parser.add_argument("--figures")
     parser.add_argument("--render")
     args = parser.parse_args()
-    {"resume": resume, "bad": bad, "figures": figures}[args.mode](args)
+    {"resume": resume, "bad": bad, "figures": figures, "steering": steering}[args.mode](args)
     if failures:
         print(f"{len(failures)} check(s) failed")
         return 1
