@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "io_errors/io_errors.hpp"
 #include "output/xdmf_text.hpp"
 
 namespace needlefem::output {
@@ -16,12 +17,31 @@ namespace {
 
 constexpr double kMillimetresPerMetre = 1000.0;
 
+// A failed HDF5 call: "cannot WHAT: REASON". The public operations prefix the file's path
+// (with_path), so the user reads one line such as
+// "out/result.h5: cannot write displacement: no space left on device".
+struct Hdf5Failure : std::runtime_error {
+  explicit Hdf5Failure(const std::string& what)
+      : std::runtime_error(fmt::format("cannot {}: {}", what, io::hdf5_failure_reason())) {}
+};
+
+// Runs `body` with HDF5's own error printing off; an HDF5 failure is reported under `path`.
+template <class Body>
+void with_path(const std::filesystem::path& path, Body&& body) {
+  const io::QuietHdf5Errors quiet;
+  try {
+    body();
+  } catch (const Hdf5Failure& failure) {
+    throw std::runtime_error(fmt::format("{}: {}", path.string(), failure.what()));
+  }
+}
+
 // Owns one HDF5 identifier and closes it with the matching H5?close.
 class Handle {
  public:
   Handle() = default;
   Handle(hid_t id, herr_t (*close)(hid_t), const std::string& what) : id_(id), close_(close) {
-    if (id_ < 0) throw std::runtime_error("HDF5: cannot " + what);
+    if (id_ < 0) throw Hdf5Failure(what);
   }
   Handle(Handle&& other) noexcept : id_(std::exchange(other.id_, -1)), close_(other.close_) {}
   Handle& operator=(Handle&& other) noexcept {
@@ -35,7 +55,7 @@ class Handle {
   hid_t get() const { return id_; }
   // Closes now so that errors surface (the destructor cannot report them).
   void close(const std::string& what) {
-    if (id_ >= 0 && close_(std::exchange(id_, -1)) < 0) throw std::runtime_error("HDF5: cannot close " + what);
+    if (id_ >= 0 && close_(std::exchange(id_, -1)) < 0) throw Hdf5Failure("close " + what);
   }
 
  private:
@@ -44,7 +64,7 @@ class Handle {
 };
 
 void check(herr_t status, const std::string& what) {
-  if (status < 0) throw std::runtime_error("HDF5: cannot " + what);
+  if (status < 0) throw Hdf5Failure(what);
 }
 
 // Object creation properties shared by groups and datasets: no time stamps, so that the
@@ -216,15 +236,17 @@ struct ResultFile::State {
       for (XdmfTopology& surface : surfaces.grids) surface.attributes.push_back(attribute);
   }
 
+  // Both XDMF files or neither (replace_files_atomically).
   void write_xdmf() const {
-    replace_file_atomically(xdmf_path(), xdmf_text(volume, times));
-    if (!surfaces.grids.empty()) replace_file_atomically(surfaces_xdmf_path(), xdmf_text(surfaces, times));
+    std::vector<std::pair<std::filesystem::path, std::string>> files{{xdmf_path(), xdmf_text(volume, times)}};
+    if (!surfaces.grids.empty()) files.emplace_back(surfaces_xdmf_path(), xdmf_text(surfaces, times));
+    replace_files_atomically(files);
   }
 
   // Everything structural is on disk from here on; afterwards only raw data is written.
   void commit() {
     if (committed) return;
-    check(H5Fflush(file.get(), H5F_SCOPE_GLOBAL), "flush " + h5_path.string());
+    check(H5Fflush(file.get(), H5F_SCOPE_GLOBAL), "flush");
     write_xdmf();
     committed = true;
   }
@@ -234,14 +256,27 @@ struct ResultFile::State {
     if (count != expected)
       throw std::invalid_argument(fmt::format("result field '{}': {} values given, {} expected", spec.name, count, expected));
   }
+
+  // The constructor's work: the file, the mesh, the case and every time-series dataset.
+  void create(const TetMesh& mesh, const std::string& resolved_case_toml, std::vector<FieldSpec> time_series,
+              std::size_t output_capacity);
+  // append_time's work on the file (see there).
+  void append(double time_s, const std::vector<std::span<const double>>& values);
+  void set_time_count(long long count);
 };
 
 ResultFile::ResultFile(const std::filesystem::path& h5_path, const TetMesh& mesh,
                        const std::string& resolved_case_toml, std::vector<FieldSpec> time_series,
                        std::size_t output_capacity)
     : state_(std::make_unique<State>()) {
-  State& s = *state_;
-  s.h5_path = h5_path;
+  state_->h5_path = h5_path;
+  with_path(h5_path, [&] { state_->create(mesh, resolved_case_toml, std::move(time_series), output_capacity); });
+}
+
+void ResultFile::State::create(const TetMesh& mesh, const std::string& resolved_case_toml,
+                               std::vector<FieldSpec> time_series, std::size_t output_capacity) {
+  State& s = *this;
+  const std::filesystem::path& h5_path = s.h5_path;
   s.node_count = mesh.nodes.size();
   s.cell_count = mesh.tet_count();
   s.capacity = output_capacity;
@@ -258,7 +293,7 @@ ResultFile::ResultFile(const std::filesystem::path& h5_path, const TetMesh& mesh
   // No sieve buffer: raw writes go to the OS when H5Dwrite returns.
   check(H5Pset_sieve_buf_size(access.get(), 0), "disable sieve buffer");
   s.file = Handle(H5Fcreate(h5_path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access.get()), H5Fclose,
-                  "create " + h5_path.string());
+                  "create the file");
   write_text_attribute(s.file.get(), "case", resolved_case_toml);
 
   // Mesh.
@@ -368,18 +403,20 @@ void ResultFile::write_static_field(const FieldSpec& spec, std::span<const doubl
     throw std::invalid_argument(fmt::format("result field '{}' written twice", spec.name));
   const bool at_nodes = spec.centre == FieldCentre::node;
   const std::string group_path = at_nodes ? "static/node" : "static/cell";
-  if (H5Lexists(s.file.get(), "static", H5P_DEFAULT) <= 0) {
-    Handle static_group = create_group(s.file.get(), "static");
-    create_group(static_group.get(), "node");
-    create_group(static_group.get(), "cell");
-  }
-  Handle group(H5Gopen2(s.file.get(), group_path.c_str(), H5P_DEFAULT), H5Gclose, "open " + group_path);
-  std::vector<hsize_t> dims{s.entities(spec.centre)};
-  if (spec.type != FieldType::scalar) dims.push_back(stored_components(spec.type));
-  write_dataset(group.get(), spec.name, H5T_IEEE_F64LE, dims, stored_values(spec.type, values));
-  Handle dataset(H5Dopen2(group.get(), spec.name.c_str(), H5P_DEFAULT), H5Dclose, "open " + spec.name);
-  write_text_attribute(dataset.get(), "unit", spec.unit);
-  write_text_attribute(dataset.get(), "type", type_name(spec.type));
+  with_path(s.h5_path, [&] {
+    if (H5Lexists(s.file.get(), "static", H5P_DEFAULT) <= 0) {
+      Handle static_group = create_group(s.file.get(), "static");
+      create_group(static_group.get(), "node");
+      create_group(static_group.get(), "cell");
+    }
+    Handle group(H5Gopen2(s.file.get(), group_path.c_str(), H5P_DEFAULT), H5Gclose, "open " + group_path);
+    std::vector<hsize_t> dims{s.entities(spec.centre)};
+    if (spec.type != FieldType::scalar) dims.push_back(stored_components(spec.type));
+    write_dataset(group.get(), spec.name, H5T_IEEE_F64LE, dims, stored_values(spec.type, values));
+    Handle dataset(H5Dopen2(group.get(), spec.name.c_str(), H5P_DEFAULT), H5Dclose, "open " + spec.name);
+    write_text_attribute(dataset.get(), "unit", spec.unit);
+    write_text_attribute(dataset.get(), "type", type_name(spec.type));
+  });
   s.add_attribute(spec, "/" + group_path + "/" + spec.name, false);
 }
 
@@ -391,15 +428,20 @@ void ResultFile::append_time(double time_s, const std::vector<std::span<const do
   if (s.times.size() == s.capacity)
     throw std::length_error(fmt::format("{}: output capacity of {} times exhausted", s.h5_path.string(), s.capacity));
   for (std::size_t f = 0; f < s.series.size(); ++f) s.check_count(s.series[f], values[f].size());
-  s.commit();
+  with_path(s.h5_path, [&] {
+    s.commit();
+    s.append(time_s, values);
+  });
+}
 
-  const hsize_t index = s.times.size();
-  for (std::size_t f = 0; f < s.series.size(); ++f) {
-    const FieldSpec& spec = s.series[f];
+void ResultFile::State::append(double time_s, const std::vector<std::span<const double>>& values) {
+  const hsize_t index = times.size();
+  for (std::size_t f = 0; f < series.size(); ++f) {
+    const FieldSpec& spec = series[f];
     const std::vector<double> stored = stored_values(spec.type, values[f]);
-    const hid_t dataset = s.series_datasets[f].get();
+    const hid_t dataset = series_datasets[f].get();
     Handle file_space(H5Dget_space(dataset), H5Sclose, "get dataspace of " + spec.name);
-    std::vector<hsize_t> start{index, 0}, count{1, s.entities(spec.centre)};
+    std::vector<hsize_t> start{index, 0}, count{1, entities(spec.centre)};
     if (spec.type != FieldType::scalar) {
       start.push_back(0);
       count.push_back(stored_components(spec.type));
@@ -413,32 +455,50 @@ void ResultFile::append_time(double time_s, const std::vector<std::span<const do
   }
   // Fields before their time, the time before the count: a reader trusting time_count (or
   // the XDMF written last) never sees a partly written output time.
-  check(H5Fflush(s.file.get(), H5F_SCOPE_GLOBAL), "flush");
+  check(H5Fflush(file.get(), H5F_SCOPE_GLOBAL), "flush");
   {
-    Handle file_space(H5Dget_space(s.time_dataset.get()), H5Sclose, "get time dataspace");
+    Handle file_space(H5Dget_space(time_dataset.get()), H5Sclose, "get time dataspace");
     const hsize_t one = 1;
     check(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, &index, nullptr, &one, nullptr), "select time");
     Handle memory_space(H5Screate_simple(1, &one, nullptr), H5Sclose, "create memory dataspace");
-    check(H5Dwrite(s.time_dataset.get(), H5T_NATIVE_DOUBLE, memory_space.get(), file_space.get(), H5P_DEFAULT, &time_s),
+    check(H5Dwrite(time_dataset.get(), H5T_NATIVE_DOUBLE, memory_space.get(), file_space.get(), H5P_DEFAULT, &time_s),
           "write time");
   }
-  check(H5Fflush(s.file.get(), H5F_SCOPE_GLOBAL), "flush");
-  const long long completed = static_cast<long long>(index) + 1;
-  check(H5Dwrite(s.time_count_dataset.get(), H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, &completed),
+  check(H5Fflush(file.get(), H5F_SCOPE_GLOBAL), "flush");
+  // The count and the XDMF say the same: when the XDMF cannot be written (a full disk), the
+  // count goes back, so a reader of either sees the same completed times. time_count's bytes
+  // were written when the file was made, so writing them again needs no new disk space.
+  try {
+    set_time_count(static_cast<long long>(index) + 1);
+    times.push_back(time_s);
+    write_xdmf();
+  } catch (...) {
+    times.resize(index);
+    try {
+      set_time_count(static_cast<long long>(index));
+    } catch (...) {
+      // The first failure is the one to report; the file then lists one time the XDMF does not.
+    }
+    throw;
+  }
+}
+
+void ResultFile::State::set_time_count(long long count) {
+  check(H5Dwrite(time_count_dataset.get(), H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, &count),
         "write time_count");
-  check(H5Fflush(s.file.get(), H5F_SCOPE_GLOBAL), "flush");
-  s.times.push_back(time_s);
-  s.write_xdmf();
+  check(H5Fflush(file.get(), H5F_SCOPE_GLOBAL), "flush");
 }
 
 void ResultFile::close() {
   State& s = *state_;
   if (!s.file.get()) return;
-  s.commit();
-  s.time_count_dataset.close("time_count");
-  s.time_dataset.close("time");
-  for (Handle& dataset : s.series_datasets) dataset.close("time-series dataset");
-  s.file.close(s.h5_path.string());
+  with_path(s.h5_path, [&] {
+    s.commit();
+    s.time_count_dataset.close("time_count");
+    s.time_dataset.close("time");
+    for (Handle& dataset : s.series_datasets) dataset.close("time-series dataset");
+    s.file.close("the file");
+  });
 }
 
 std::size_t ResultFile::completed_times() const { return state_->times.size(); }

@@ -39,6 +39,10 @@
 // (atomic), listing times 0..i. The XDMF of a fresh file appears only once the mesh is
 // flushed, and a stale one is removed before the .h5 is truncated. tests/output checks this
 // by SIGKILLing a writer and by comparing the file's metadata bytes before and after.
+// A write that fails (a full disk) takes its output time back: time_count is set back when the
+// XDMF cannot be written, so the .h5 and both XDMF files list the same completed times (only a
+// kill between the two can leave the XDMF one time behind, never ahead). Every error is one
+// line: "PATH: cannot WHAT: REASON", REASON being the system's ("no space left on device").
 #pragma once
 
 #include <cstddef>
@@ -84,7 +88,8 @@ class ResultFile {
   void write_static_field(const FieldSpec& spec, std::span<const double> values);
 
   // One completed output time: one value array per declared time-series field, in the
-  // declaration order. When this returns, the .h5 and .xdmf list this time.
+  // declaration order. When this returns, the .h5 and .xdmf list this time; when it throws,
+  // neither does.
   void append_time(double time_s, const std::vector<std::span<const double>>& values);
 
   // Flushes, writes the final XDMF and closes the file. Throws on HDF5 errors; the

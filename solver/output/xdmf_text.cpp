@@ -1,12 +1,12 @@
 #include "output/xdmf_text.hpp"
 
-#include <cctype>
 #include <cerrno>
 #include <cstdio>
-#include <cstring>
 #include <stdexcept>
 
 #include <fmt/format.h>
+
+#include "io_errors/io_errors.hpp"
 
 namespace needlefem::output {
 namespace {
@@ -90,24 +90,30 @@ std::string xdmf_text(const XdmfDocument& document, const std::vector<double>& t
   return text + "  </Domain>\n</Xdmf>\n";
 }
 
-void replace_file_atomically(const std::filesystem::path& path, const std::string& text) {
-  const std::filesystem::path temporary = path.string() + ".tmp";
-  // The system's reason, as a clause: "no space left on device".
-  auto reason = [](int error) {
-    std::string text = std::strerror(error);
-    if (!text.empty()) text[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(text[0])));
-    return text;
+void replace_files_atomically(const std::vector<std::pair<std::filesystem::path, std::string>>& files) {
+  const auto temporary = [](const std::filesystem::path& path) { return path.string() + ".tmp"; };
+  const auto remove_temporaries = [&] {
+    for (const auto& [path, text] : files) std::remove(temporary(path).c_str());
   };
-  std::FILE* file = std::fopen(temporary.c_str(), "wb");
-  if (!file) throw std::runtime_error(fmt::format("{}: cannot write: {}", path.string(), reason(errno)));
-  int error = 0;
-  if (std::fwrite(text.data(), 1, text.size(), file) != text.size() || std::fflush(file) != 0) error = errno;
-  if (std::fclose(file) != 0 && error == 0) error = errno;  // a full disk may only show at close
-  if (error == 0 && std::rename(temporary.c_str(), path.c_str()) != 0) error = errno;
-  if (error != 0) {
-    std::remove(temporary.c_str());  // the old file stays, and no temporary is left behind
-    throw std::runtime_error(fmt::format("{}: cannot write: {}", path.string(), reason(error)));
+  const auto fail = [&](const std::filesystem::path& path, int error) {
+    remove_temporaries();  // the old files stay, and no temporary is left behind
+    throw std::runtime_error(fmt::format("{}: cannot write: {}", path.string(), io::system_reason(error)));
+  };
+  // Every temporary first: a full disk shows here, before any file has changed.
+  for (const auto& [path, text] : files) {
+    std::FILE* file = std::fopen(temporary(path).c_str(), "wb");
+    if (!file) fail(path, errno);
+    int error = 0;
+    if (std::fwrite(text.data(), 1, text.size(), file) != text.size() || std::fflush(file) != 0) error = errno;
+    if (std::fclose(file) != 0 && error == 0) error = errno;  // a full disk may only show at close
+    if (error != 0) fail(path, error);
   }
+  for (const auto& [path, text] : files)
+    if (std::rename(temporary(path).c_str(), path.c_str()) != 0) fail(path, errno);
+}
+
+void replace_file_atomically(const std::filesystem::path& path, const std::string& text) {
+  replace_files_atomically({{path, text}});
 }
 
 }  // namespace needlefem::output

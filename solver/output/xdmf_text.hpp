@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace needlefem::output {
@@ -53,5 +54,9 @@ std::string xdmf_text(const XdmfDocument& document, const std::vector<double>& t
 // temporary is removed and std::runtime_error says "PATH: cannot write: REASON" with the
 // system's reason (e.g. "no space left on device").
 void replace_file_atomically(const std::filesystem::path& path, const std::string& text);
+
+// Several files replaced as one: every temporary is written before any is renamed, so a full
+// disk leaves all the old files as they were (not one new and one old).
+void replace_files_atomically(const std::vector<std::pair<std::filesystem::path, std::string>>& files);
 
 }  // namespace needlefem::output

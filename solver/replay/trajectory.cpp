@@ -8,6 +8,8 @@
 
 #include <fmt/core.h>
 
+#include "io_errors/io_errors.hpp"
+
 namespace needlefem::replay {
 
 namespace {
@@ -27,22 +29,6 @@ class Hid {
  private:
   hid_t id_;
   herr_t (*close_)(hid_t);
-};
-
-// HDF5 prints its error stack to stderr by default; we report our own one-line errors instead.
-class QuietHdf5Errors {
- public:
-  QuietHdf5Errors() {
-    H5Eget_auto2(H5E_DEFAULT, &function_, &data_);
-    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  }
-  QuietHdf5Errors(const QuietHdf5Errors&) = delete;
-  QuietHdf5Errors& operator=(const QuietHdf5Errors&) = delete;
-  ~QuietHdf5Errors() { H5Eset_auto2(H5E_DEFAULT, function_, data_); }
-
- private:
-  H5E_auto2_t function_ = nullptr;
-  void* data_ = nullptr;
 };
 
 struct DatasetSpec {
@@ -204,7 +190,7 @@ void write_trajectory(const std::filesystem::path& file, const Trajectory& t) {
   validate_trajectory(t, name);
   const std::filesystem::path partial = file.string() + ".tmp";
   {
-    QuietHdf5Errors quiet;
+    io::QuietHdf5Errors quiet;
     Hid file_id(H5Fcreate(partial.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
     if (!file_id.valid()) throw TrajectoryError(fmt::format("{}: cannot create file", partial.string()));
     write_string_attribute(file_id.get(), "format", trajectory_format_name, name);
@@ -234,7 +220,7 @@ void write_trajectory(const std::filesystem::path& file, const Trajectory& t) {
 
 Trajectory read_trajectory(const std::filesystem::path& file) {
   const std::string name = file.string();
-  QuietHdf5Errors quiet;
+  io::QuietHdf5Errors quiet;
   if (!std::filesystem::exists(file)) throw TrajectoryError(fmt::format("{}: no such file", name));
   if (H5Fis_hdf5(file.c_str()) <= 0) throw TrajectoryError(fmt::format("{}: not an HDF5 file", name));
   Hid file_id(H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);

@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <regex>
+#include <set>
 #include <sstream>
 
 #include "h5_read.hpp"
@@ -245,6 +247,74 @@ TEST(ResultFile, CapacityAndInputErrors) {
                std::invalid_argument);  // node count given for a cell field
   file.append_time(0.0, {pressure});
   EXPECT_THROW(file.append_time(1.0, {pressure}), std::length_error);
+}
+
+// /dev/full answers every write with ENOSPC: a symlink to it gives one file a full disk.
+void link_to_full_disk(const std::filesystem::path& link) {
+  std::filesystem::remove(link);
+  std::filesystem::create_symlink("/dev/full", link);
+}
+
+// The distinct output times an XDMF file lists.
+std::set<double> xdmf_times(const std::filesystem::path& xdmf) {
+  std::ifstream in(xdmf);
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string s = text.str();
+  std::set<double> times;
+  const std::regex time_value(R"(<Time Value="([^"]+)\"/>)");
+  for (auto it = std::sregex_iterator(s.begin(), s.end(), time_value); it != std::sregex_iterator(); ++it)
+    times.insert(std::stod((*it)[1]));
+  return times;
+}
+
+// A failed HDF5 write is one line: the file's path and the system's reason (HDF5's stack
+// once went to stderr, and the error said only "HDF5: cannot create").
+TEST(ResultFile, FullDiskIsNamedWithThePathInOneLine) {
+  const TetMesh mesh = testing::kuhn_cube(0.001, false);
+  const std::filesystem::path path = scratch("full_disk.h5");
+  link_to_full_disk(path);
+  ::testing::internal::CaptureStderr();
+  try {
+    ResultFile file(path, mesh, "", {{"p", FieldCentre::node, FieldType::scalar, "Pa"}}, 2);
+    ADD_FAILURE() << "a result file on a full disk was created";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()), path.string() + ": cannot create the file: no space left on device");
+  }
+  EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
+  std::filesystem::remove(path);
+}
+
+// When the XDMF of an output time cannot be written, result.h5 takes that time back: both
+// XDMF files and time_count list the same completed times, never one more in either.
+TEST(ResultFile, AnXdmfThatCannotBeWrittenTakesItsTimeBack) {
+  const TetMesh mesh = testing::kuhn_cube(0.001, true);
+  const std::filesystem::path path = scratch("xdmf_full.h5");
+  const std::filesystem::path surfaces_tmp = scratch("xdmf_full_surfaces.xdmf.tmp");
+  std::vector<double> pressure(mesh.nodes.size(), 1.0);
+  {
+    ResultFile file(path, mesh, "", {{"p", FieldCentre::node, FieldType::scalar, "Pa"}}, 4);
+    file.append_time(0.0, {pressure});
+    file.append_time(0.5, {pressure});
+    link_to_full_disk(surfaces_tmp);
+    try {
+      file.append_time(1.0, {pressure});
+      ADD_FAILURE() << "an output time was appended with its XDMF on a full disk";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("xdmf_full_surfaces.xdmf: cannot write: no space left on device"),
+                std::string::npos) << e.what();
+    }
+    EXPECT_EQ(file.completed_times(), 2u);
+    EXPECT_FALSE(std::filesystem::exists(std::filesystem::symlink_status(surfaces_tmp))) << "temporary left behind";
+    EXPECT_FALSE(std::filesystem::exists(scratch("xdmf_full.xdmf.tmp"))) << "temporary left behind";
+    EXPECT_EQ(H5Reader(path.string()).read<long long>("/series/time_count"), std::vector<long long>{2});
+    const std::set<double> two{0.0, 0.5};
+    EXPECT_EQ(xdmf_times(file.xdmf_path()), two);
+    EXPECT_EQ(xdmf_times(scratch("xdmf_full_surfaces.xdmf")), two);
+    file.append_time(1.0, {pressure});  // space again: the file goes on from where it was
+  }
+  EXPECT_EQ(H5Reader(path.string()).read<long long>("/series/time_count"), std::vector<long long>{3});
+  EXPECT_EQ(xdmf_times(scratch("xdmf_full.xdmf")), (std::set<double>{0.0, 0.5, 1.0}));
 }
 
 }  // namespace
