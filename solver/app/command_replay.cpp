@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.hpp"
+#include "interrupt/interrupt_guard.hpp"
 #include "replay/device.hpp"
 #include "replay/player.hpp"
 #include "replay/trajectory.hpp"
@@ -44,9 +45,9 @@ void add_replay_command(CLI::App& app) {
   command->callback([o] {
     const replay::Trajectory trajectory = replay::read_trajectory(o->trajectory_file);
     const auto device = replay::make_device(o->driver);
-    replay::InterruptGuard interrupt;
+    InterruptGuard interrupt;
     const replay::ReplayReport report =
-        replay::replay(trajectory, *device, o->replay, replay::InterruptGuard::stop_flag());
+        replay::replay(trajectory, *device, o->replay, InterruptGuard::stop_flag());
     nlohmann::json out = report.to_json(o->replay);
     out["trajectory"] = o->trajectory_file;
     out["driver"] = device->description();

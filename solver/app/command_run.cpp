@@ -7,6 +7,7 @@
 
 #include "app/commands.hpp"
 #include "case/case.hpp"
+#include "interrupt/interrupt_guard.hpp"
 #include "run/run_case.hpp"
 
 namespace needlefem::app {
@@ -18,6 +19,10 @@ void run_command(const CaseOptions& options) {
   run::RunOptions run_options;
   run_options.out_dir = options.out_dir;
   run_options.petsc_options = backend_options();
+  // Ctrl-C (or a scheduler's SIGTERM) ends the run cleanly after the step in progress; a second
+  // Ctrl-C kills it at once.
+  const InterruptGuard interrupt(true);
+  run_options.stop = &InterruptGuard::stop_flag();
   const auto summary = run::run_case(c, run_options);
   const auto& solver = summary["solver"];
   fmt::print("run: {} output times to t = {} s in {:.2f} s ({} steps, {} Newton its, {} Jacobians, {} dofs); "

@@ -1,5 +1,6 @@
 // needlefem: command-line entry point. Parses the command line with CLI11 and dispatches
-// to the sub-commands; turns every error into one line on stderr and exit code 1.
+// to the sub-commands; turns every error into one line on stderr and exit code 1 (128 + the
+// signal for a run that SIGINT or SIGTERM stopped).
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -15,6 +16,7 @@
 #include "app/commands.hpp"
 #include "case/schema.hpp"
 #include "integration/blas_threads.hpp"
+#include "interrupt/interrupt_guard.hpp"
 
 namespace needlefem::app {
 
@@ -114,6 +116,9 @@ int main(int argc, char** argv) {
     cli.parse(reversed);
   } catch (const CLI::ParseError& e) {
     return cli.exit(e);
+  } catch (const Interrupted& e) {
+    fmt::print(stderr, "needlefem: {}\n", e.what());
+    return 128 + e.signal_number;
   } catch (const std::exception& e) {
     fmt::print(stderr, "needlefem: error: {}\n", e.what());
     return 1;

@@ -2,7 +2,6 @@
 #include <algorithm>
 #include "replay/player.hpp"
 
-#include <signal.h>
 #include <sys/prctl.h>
 #include <time.h>
 
@@ -85,13 +84,6 @@ class MinimalTimerSlack {
  private:
   long previous_ns_;
 };
-
-std::atomic<bool> interrupt_requested{false};
-static_assert(std::atomic<bool>::is_always_lock_free, "the signal handler needs a lock-free flag");
-
-struct sigaction previous_sigint {}, previous_sigterm{};
-
-extern "C" void request_stop(int) { interrupt_requested.store(true); }
 
 nlohmann::json percentiles_us(const Percentiles& p) {
   return {{"p50", 1e6 * p.p50}, {"p99", 1e6 * p.p99}, {"max", 1e6 * p.max}};
@@ -195,22 +187,5 @@ nlohmann::json ReplayReport::to_json(const ReplayOptions& options) const {
           {"lateness_us", percentiles_us(lateness_s)},
           {"interrupted", interrupted}};
 }
-
-InterruptGuard::InterruptGuard() {
-  interrupt_requested.store(false);
-  struct sigaction action {};
-  action.sa_handler = request_stop;
-  sigemptyset(&action.sa_mask);
-  action.sa_flags = 0;  // no SA_RESTART: the sleeping loop must wake with EINTR
-  sigaction(SIGINT, &action, &previous_sigint);
-  sigaction(SIGTERM, &action, &previous_sigterm);
-}
-
-InterruptGuard::~InterruptGuard() {
-  sigaction(SIGINT, &previous_sigint, nullptr);
-  sigaction(SIGTERM, &previous_sigterm, nullptr);
-}
-
-const std::atomic<bool>& InterruptGuard::stop_flag() { return interrupt_requested; }
 
 }  // namespace needlefem::replay

@@ -8,7 +8,7 @@
 //   dropped frame: a deadline the loop overslept completely; rather than bursting frames to
 //                  catch up, the loop resumes at the newest deadline that has passed
 //   period error:  (time between consecutive sends) - period; its |.| percentiles are reported
-// When the trajectory ends, the stop flag is raised (SIGINT through InterruptGuard), or the
+// When the trajectory ends, the stop flag is raised (SIGINT through interrupt/interrupt_guard.hpp), or the
 // requested duration is reached, one last frame with the last pose and zero force and torque is
 // sent, so the device is never left pushing.
 #pragma once
@@ -54,16 +54,5 @@ struct ReplayReport {
 
 ReplayReport replay(const Trajectory& trajectory, HapticDevice& device, const ReplayOptions& options,
                     const std::atomic<bool>& stop);
-
-// While alive, SIGINT and SIGTERM raise stop_flag() instead of killing the process, and a
-// sleeping replay loop wakes early (EINTR). The previous handlers are restored on destruction.
-class InterruptGuard {
- public:
-  InterruptGuard();
-  ~InterruptGuard();
-  InterruptGuard(const InterruptGuard&) = delete;
-  InterruptGuard& operator=(const InterruptGuard&) = delete;
-  static const std::atomic<bool>& stop_flag();
-};
 
 }  // namespace needlefem::replay

@@ -22,6 +22,8 @@
 #include "integration/case_options.hpp"
 #include "integration/ida_integrator.hpp"
 #include "integration/petsc_session.hpp"
+#include "interrupt/interrupt_guard.hpp"
+#include "io_errors/io_errors.hpp"
 #include "model/scene_model.hpp"
 #include "output/result_file.hpp"
 #include "output/xdmf_text.hpp"
@@ -119,8 +121,8 @@ class HistoryCsv {
   // extra_header: further columns (each preceded by a comma) whose cells row() gets as text.
   HistoryCsv(const std::filesystem::path& file, const std::vector<std::string>& surfaces,
              const std::string& extra_header)
-      : stream_(file) {
-    if (!stream_) throw std::runtime_error("cannot write " + file.string());
+      : file_(file), stream_(file) {
+    if (!stream_) throw std::runtime_error(fmt::format("{}: cannot write: {}", file.string(), io::system_reason(errno)));
     stream_ << "time_s,steps,newton_iterations";
     for (const auto& q : fields::scalar_quantities())
       stream_ << fmt::format(",max_{0},max_{0}_x_mm,max_{0}_y_mm,max_{0}_z_mm", q.name);
@@ -135,10 +137,12 @@ class HistoryCsv {
                              m.position[1] * kMmPerM, m.position[2] * kMmPerM);
     for (const auto& r : reactions) stream_ << fmt::format(",{:.9g},{:.9g},{:.9g}", r[0], r[1], r[2]);
     stream_ << fmt::format(",{:.9g},{:.9g}", elastic_energy, f.kinetic_energy) << extra_cells << "\n";
-    stream_.flush();
+    if (!stream_.flush())  // a full disk: stop here rather than go on with a history that lacks rows
+      throw std::runtime_error(fmt::format("{}: cannot write: {}", file_.string(), io::system_reason(errno)));
   }
 
  private:
+  std::filesystem::path file_;
   std::ofstream stream_;
 };
 
@@ -243,10 +247,20 @@ nlohmann::json run_case(const Case& c, const RunOptions& options) {
   std::unique_ptr<material::Material> material;
   std::unique_ptr<NeedleOutput> needle;
   std::unique_ptr<SafetyReport> safety;
+  // A stop request (options.stop) ends the run after the step in progress, keeping every
+  // completed output time.
+  const auto stop_if_asked = [&](double t) {
+    if (!options.stop || !options.stop->load()) return;
+    throw Interrupted(InterruptGuard::signal_number(),
+                      fmt::format("stopped by {} at t = {:.6g} s; result.h5 and result.xdmf hold the {} output times "
+                                  "completed before", signal_name(InterruptGuard::signal_number()), t,
+                                  record.output_times_written));
+  };
   try {
     scene = std::make_unique<SceneModel>(load_scene_model(c, options.out_dir));
     require_valid_elements(*scene);
     record.mesh_s = seconds_since(start);
+    stop_if_asked(times.front());
     const TetMesh& mesh = scene->mesh;
 
     const PetscSession petsc(options.petsc_options);
@@ -297,6 +311,7 @@ nlohmann::json run_case(const Case& c, const RunOptions& options) {
     // Long output intervals still report progress: a line per accepted step, at most every few seconds.
     auto last_report = Clock::now();
     const auto report_step = [&](double t_step) {
+      stop_if_asked(t_step);
       if (!options.progress || seconds_since(last_report) < kStepReportSeconds) return;
       last_report = Clock::now();
       const IdaCounters k = integrator.counters();
@@ -316,6 +331,7 @@ nlohmann::json run_case(const Case& c, const RunOptions& options) {
     const double inversion_s = (c.text("scene.kind") == "block" ? mechanics::block_inversion_time_s(c) : std::nullopt)
                                    .value_or(std::numeric_limits<double>::infinity());
     for (const double t : times) {
+      stop_if_asked(integrator.time());
       const auto step_start = Clock::now();
       if (t >= inversion_s)
         throw c.error("block.applied_gradient",
@@ -345,6 +361,8 @@ nlohmann::json run_case(const Case& c, const RunOptions& options) {
         values.emplace_back(needle->slip());
       }
       file.append_time(t, values);
+      record.time_reached_s = t;
+      record.output_times_written = file.completed_times();
 
       auto resultants = system->resultants(integrator.state(), record.surfaces);
       record.reactions = std::move(resultants.reactions);
@@ -355,8 +373,6 @@ nlohmann::json run_case(const Case& c, const RunOptions& options) {
       safety->add_time(t, f);
       history.row(t, record.counters, f, record.reactions, record.elastic_energy_j,
                   safety->history_cells() + (needle ? needle->history_cells() : ""));
-      record.time_reached_s = t;
-      record.output_times_written = file.completed_times();
       record.output_s += seconds_since(output_start);
       record.integration_s = integration_s;
       // By the first output every solver has been set up and has solved (the initial-rates
@@ -368,9 +384,13 @@ nlohmann::json run_case(const Case& c, const RunOptions& options) {
   } catch (const std::exception& e) {
     nlohmann::json failed = summary_json(c, material.get(), scene.get(), safety.get(), record, seconds_since(start));
     if (needle) failed.update(needle->summary());
-    failed["status"] = "failed";
+    failed["status"] = dynamic_cast<const Interrupted*>(&e) ? "interrupted" : "failed";
     failed["error"] = e.what();
-    write_json_atomically(summary_file, failed);
+    try {
+      write_json_atomically(summary_file, failed);
+    } catch (const std::exception& summary_error) {  // a full disk: say both, in one line
+      throw std::runtime_error(fmt::format("{} (and no summary.json: {})", e.what(), summary_error.what()));
+    }
     throw;
   }
   nlohmann::json summary = summary_json(c, material.get(), scene.get(), safety.get(), record, seconds_since(start));

@@ -4,12 +4,14 @@
 //   (physics/fields) appended to DIR/result.h5 + .xdmf, a row of DIR/history.csv (per-time
 //   maxima with positions, reaction force per named boundary surface, elastic and kinetic
 //   energy) and a progress line on `progress`; finally DIR/summary.json (written atomically).
-// A failure (IDA giving up, an inverted element) leaves every completed output time readable
-// in result.h5/.xdmf and history.csv, writes summary.json with "status": "failed" and the
+// A failure (IDA giving up, an inverted element, a full disk) leaves every completed output
+// time readable in result.h5/.xdmf and history.csv (the XDMF lists exactly the times result.h5
+// counts as complete), writes summary.json with "status": "failed" (or "interrupted") and the
 // reason, and rethrows. The run holds an exclusive lock on DIR from before it changes anything
 // there; a second run into a DIR that a live run holds is refused and leaves it untouched.
 #pragma once
 
+#include <atomic>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -27,6 +29,9 @@ struct RunOptions {
   std::filesystem::path out_dir;
   std::vector<std::string> petsc_options;  // passed unchanged to PETSc (e.g. -nf_ksp_type gmres)
   std::FILE* progress = stderr;            // one line per output time; nullptr for none
+  // Raised (InterruptGuard: SIGINT, SIGTERM), the run stops after the IDA step in progress:
+  // summary.json says "interrupted", the completed output times stay, Interrupted is thrown.
+  const std::atomic<bool>* stop = nullptr;
 };
 
 // Returns the summary written to out_dir/summary.json.

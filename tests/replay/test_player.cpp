@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "fixtures.hpp"
+#include "interrupt/interrupt_guard.hpp"
 #include "replay/player.hpp"
 
 namespace needlefem::replay {
@@ -159,6 +160,7 @@ TEST(Player, SigintStopsTheLoopThroughTheGuard) {
     });
     report = replay(t, device, options, InterruptGuard::stop_flag());
     interrupter.join();
+    EXPECT_EQ(InterruptGuard::signal_number(), SIGINT);
   }
   EXPECT_TRUE(report.interrupted);
   EXPECT_TRUE(device.frames.back().final_frame);

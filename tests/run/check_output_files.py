@@ -9,13 +9,27 @@
              summary.json (or result.xdmf) to gives that file a full disk without filling one.
              Once, the error said only "cannot write summary.json.partial" and the .partial stayed.
 
-usage: check_output_files.py {lock,disk-full} --exe NEEDLEFEM --case CASE --out DIR
+  interrupt  SIGTERM (then SIGINT) mid-run: the run stops after the step in progress with exit
+             128 + signal, one line, summary.json "interrupted", and result.h5/.xdmf holding the
+             same completed output times (once, the signal killed the run and left no summary).
+  full-disk-mid-run
+             A small tmpfs (mounted in a user namespace: unshare -Urm) fills up mid-run, once in
+             result.h5 and once in the XDMF files: one line naming the file and "no space left on
+             device", and the XDMF files list exactly the times result.h5 counts as complete
+             (once, HDF5 printed its error stack, the error named summary.json instead, and
+             result.xdmf listed a time result_surfaces.xdmf and the summary did not). Skipped
+             (exit 77) where a user namespace cannot mount a tmpfs.
+
+Every mode checks the output directory it leaves with check_consistent().
+
+usage: check_output_files.py MODE --exe NEEDLEFEM --case CASE --out DIR
 """
 import argparse
 import fcntl
 import glob
 import json
 import os
+import re
 import shutil
 import signal
 import subprocess
@@ -23,6 +37,44 @@ import sys
 import time
 
 import h5py
+
+SKIP = 77  # ctest's SKIP_RETURN_CODE for this script
+
+
+def check_consistent(out, failures, label):
+    """result.h5's completed times are exactly those each XDMF lists, each readable; no temporary
+    is left; summary.json, if any, counts the same times and says completed only when it is."""
+    try:
+        with h5py.File(os.path.join(out, "result.h5"), "r") as result:
+            count = int(result["/series/time_count"][0])
+            times = [float(t) for t in result["/series/time"][:count]]
+            for name in ("result.xdmf", "result_surfaces.xdmf"):
+                path = os.path.join(out, name)
+                if not os.path.exists(path):
+                    continue
+                with open(path) as f:
+                    text = f.read()
+                listed = sorted({float(t) for t in re.findall(r'<Time Value="([^"]+)"', text)})
+                if listed != times:
+                    failures.append(f"{label}: {name} lists {len(listed)} times, result.h5 completed {count}")
+                for dataset in sorted(set(re.findall(r"result\.h5:(/series/steps/\d+/\w+)", text))):
+                    if int(dataset.split("/")[3]) >= count or result[dataset][...].size == 0:
+                        failures.append(f"{label}: {name} references {dataset}, not a completed time")
+                        break
+    except OSError as error:
+        failures.append(f"{label}: result.h5 does not open: {error}")
+        return None
+    left = glob.glob(os.path.join(out, "*.tmp")) + glob.glob(os.path.join(out, "*.partial"))
+    if left:
+        failures.append(f"{label}: left {[os.path.basename(f) for f in left]}")
+    summary_file = os.path.join(out, "summary.json")
+    if os.path.exists(summary_file):
+        with open(summary_file) as f:
+            summary = json.load(f)
+        if summary.get("output_times") != count:
+            failures.append(f"{label}: summary.json counts {summary.get('output_times')} output times, result.h5 {count}")
+        return summary
+    return None
 
 
 def check_lock(args, run, failures):
@@ -98,14 +150,105 @@ def check_disk_full(args, run, failures):
             failures.append(f"{target} on a full disk left {[os.path.basename(f) for f in left]}")
 
 
+def check_interrupt(args, run, failures):
+    for sig in (signal.SIGTERM, signal.SIGINT):
+        out = os.path.join(args.out, sig.name)
+        shutil.rmtree(out, ignore_errors=True)
+        history = os.path.join(out, "history.csv")
+        # 101 output times of the small block: stopped once the first two are written.
+        process = subprocess.Popen(run + ["--out", out], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        deadline = time.monotonic() + 60
+        while process.poll() is None and time.monotonic() < deadline:
+            if os.path.exists(history):
+                with open(history) as f:
+                    if sum(1 for _ in f) >= 3:  # header and two output times
+                        break
+            time.sleep(0.005)
+        process.send_signal(signal.SIGSTOP)  # held still, so the signal lands mid-run however fast it is
+        running = process.poll() is None
+        process.send_signal(sig)
+        process.send_signal(signal.SIGCONT)
+        stderr = process.communicate()[1]
+        if not running:
+            failures.append(f"inconclusive: the run ended before {sig.name} was sent")
+            continue
+        errors = [line for line in stderr.splitlines() if not line.startswith("run: ")]
+        if process.returncode != 128 + sig.value:
+            failures.append(f"{sig.name}: exit {process.returncode}, expected {128 + sig.value}")
+        if len(errors) != 1 or f"needlefem: stopped by {sig.name} at t = " not in errors[0]:
+            failures.append(f"{sig.name}: expected one line saying the run was stopped, got {errors!r}")
+        summary = check_consistent(out, failures, sig.name)
+        if summary is None or summary.get("status") != "interrupted":
+            failures.append(f"{sig.name}: summary.json does not say interrupted")
+        elif not 2 <= summary["output_times"] < 101:
+            failures.append(f"{sig.name}: {summary['output_times']} output times kept, expected the 2+ before the stop")
+
+
+def run_on_tmpfs(run, out, size_bytes):
+    """Runs `run` into `out` with a tmpfs of size_bytes mounted there in a user namespace; the
+    files are copied out beside it (the mount goes with the namespace). None if no tmpfs."""
+    mount_point, copy = out + ".mnt", out
+    shutil.rmtree(copy, ignore_errors=True)
+    shutil.rmtree(mount_point, ignore_errors=True)
+    os.makedirs(mount_point)
+    script = ('mount -t tmpfs -o size="$1" tmpfs "$2" || exit 77; shift 2; "$@" --out "$MNT" 2>"$MNT.stderr"; '
+              'status=$?; mkdir -p "$COPY" && cp -a "$MNT"/. "$COPY"/; exit $status')
+    environment = dict(os.environ, MNT=mount_point, COPY=copy)
+    result = subprocess.run(["unshare", "-Urm", "sh", "-c", script, "sh", str(size_bytes), mount_point] + run,
+                            env=environment, capture_output=True, text=True)
+    if result.returncode == SKIP:
+        return None
+    with open(mount_point + ".stderr") as f:
+        return result.returncode, f.read(), mount_point
+
+
+def check_full_disk_mid_run(args, run, failures):
+    if shutil.which("unshare") is None:
+        print("skipped: no unshare")
+        sys.exit(SKIP)
+    # Fine elements and few output times: the fields of a time are far larger than its XDMF
+    # text, so the disk fills in result.h5; coarse elements and 101 times: in the XDMF.
+    cases = {"result.h5": ["--set", "block.element_mm=0.15", "--set", "output.interval_s=0.1"], "xdmf": []}
+    for label, settings in cases.items():
+        out = os.path.join(args.out, label.replace(".", "_"))
+        complete = out + "_complete"
+        shutil.rmtree(complete, ignore_errors=True)
+        subprocess.run(run + settings + ["--out", complete], check=True, capture_output=True)
+        with h5py.File(os.path.join(complete, "result.h5"), "r") as result:
+            times = int(result["/series/time_count"][0])
+            per_time = sum(d.nbytes // d.shape[0] for group in ("node", "cell")
+                           for d in result["series"][group].values())
+        used = sum(os.stat(f).st_blocks * 512 for f in glob.glob(os.path.join(complete, "*")))
+        # Room for about half the run's output times. For result.h5, half a time's fields more:
+        # larger than the XDMF text still to come, so the fields of the next time are what fails.
+        size = used - (times // 2) * per_time + per_time // 2 if label == "result.h5" else used * 2 // 3
+        outcome = run_on_tmpfs(run + settings, out, size)
+        if outcome is None:
+            print("skipped: a user namespace cannot mount a tmpfs here")
+            sys.exit(SKIP)
+        status, stderr, mount_point = outcome
+        errors = [line for line in stderr.splitlines() if not line.startswith("run: ")]
+        if status == 0:
+            failures.append(f"{label}: a run on a full disk exited 0")
+            continue
+        named = (re.escape(os.path.join(mount_point, "result.h5")) + r": cannot write \w+: no space left on device"
+                 if label == "result.h5" else re.escape(mount_point) + r"/result(_surfaces)?\.xdmf: cannot write: no space left on device")
+        if len(errors) != 1 or not re.search(named, errors[0]):
+            failures.append(f"{label}: expected one line naming the file and the full disk, got {errors!r}")
+        summary = check_consistent(out, failures, label)
+        if summary is not None and summary.get("status") != "failed":
+            failures.append(f"{label}: summary.json says {summary.get('status')!r} on a full disk")
+
+
 parser = argparse.ArgumentParser()
-parser.add_argument("mode", choices=["lock", "disk-full"])
+parser.add_argument("mode", choices=["lock", "disk-full", "interrupt", "full-disk-mid-run"])
 parser.add_argument("--exe", required=True)
 parser.add_argument("--case", required=True)
 parser.add_argument("--out", required=True)
 args = parser.parse_args()
 failures = []
-{"lock": check_lock, "disk-full": check_disk_full}[args.mode](
+{"lock": check_lock, "disk-full": check_disk_full, "interrupt": check_interrupt,
+ "full-disk-mid-run": check_full_disk_mid_run}[args.mode](
     args, [args.exe, "run", args.case, "--set", "block.element_mm=1"], failures)
 for failure in failures:
     print("FAIL:", failure)
