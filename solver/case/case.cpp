@@ -69,7 +69,7 @@ class Checker {
   void check_range(const std::string& key, double v, const KeySpec& spec) const {
     const bool below = spec.min_exclusive ? v <= spec.min : v < spec.min;
     if (below || v > spec.max)
-      fail(key, fmt::format("{} is out of range {}{}, {}]", v, spec.min_exclusive ? "(" : "[", spec.min, spec.max));
+      fail(key, fmt::format("{} is out of range {}", v, range_text(spec)));
   }
 
   Value convert(const std::string& key, const toml::node& node) const {

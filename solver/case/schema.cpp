@@ -431,6 +431,10 @@ std::string default_text(const KeyDefault& value) {
       value);
 }
 
+// The schema stores an unbounded side as +-1e300.
+bool has_min(const KeySpec& spec) { return spec.min > -1e299; }
+bool has_max(const KeySpec& spec) { return spec.max < 1e299; }
+
 }  // namespace
 
 const std::vector<KeySpec>& case_schema() {
@@ -457,15 +461,17 @@ std::string closest_key(const std::string& key) {
   return best;
 }
 
+std::string range_text(const KeySpec& spec) {
+  return fmt::format("{}{}, {}", has_min(spec) ? (spec.min_exclusive ? "(" : "[") : "(",
+                     has_min(spec) ? fmt::format("{}", spec.min) : "-inf",
+                     has_max(spec) ? fmt::format("{}]", spec.max) : "inf)");
+}
+
 std::string describe_key(const KeySpec& spec) {
   std::string range;
-  if (spec.type == KeyType::Real || spec.type == KeyType::Integer || spec.type == KeyType::RealList) {
-    const bool has_min = spec.min > -1e299, has_max = spec.max < 1e299;
-    if (has_min || has_max)
-      range = fmt::format(", range {}{}, {}]", has_min ? (spec.min_exclusive ? "(" : "[") : "(",
-                          has_min ? fmt::format("{}", spec.min) : "-inf",
-                          has_max ? fmt::format("{}", spec.max) : "inf");
-  }
+  if ((spec.type == KeyType::Real || spec.type == KeyType::Integer || spec.type == KeyType::RealList) &&
+      (has_min(spec) || has_max(spec)))
+    range = ", range " + range_text(spec);
   return fmt::format("{} ({}{}, default {})\n    {}", spec.key, type_name(spec), range,
                      default_text(spec.fallback), spec.help);
 }

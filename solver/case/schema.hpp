@@ -29,6 +29,9 @@ const std::vector<KeySpec>& case_schema();
 const KeySpec* find_key(const std::string& key);
 // The closest known key (edit distance), for "did you mean" hints; empty if none is close.
 std::string closest_key(const std::string& key);
+// A key's numeric range as "[0, 100]", "(0, inf)": bounds in their shortest exact form, and an
+// unbounded side as inf (the schema stores it as +-1e300, which the user never typed).
+std::string range_text(const KeySpec& spec);
 // Human-readable description of one key (type, range, default) for --help and `keys`.
 std::string describe_key(const KeySpec& spec);
 

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <numbers>
 
+#include <fmt/format.h>
+
 #include "case/case.hpp"
 
 namespace needlefem {
@@ -28,9 +30,8 @@ NeedleMotion needle_motion_from_case(const Case& input) {
                             input.real("motion.rotation_speed_deg_per_s") * std::numbers::pi / 180.0,
                             input.real("motion.duration_s"), input.real("motion.ramp_s")};
   if (motion.ramp > motion.duration)
-    throw input.error("motion.ramp_s", "the start ramp (" + std::to_string(motion.ramp) +
-                                           " s) is longer than motion.duration_s (" +
-                                           std::to_string(motion.duration) + " s)");
+    throw input.error("motion.ramp_s", fmt::format("the start ramp ({:.6g} s) is longer than motion.duration_s ({:.6g} s)",
+                                                   motion.ramp, motion.duration));
   return motion;
 }
 

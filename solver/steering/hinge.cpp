@@ -6,21 +6,23 @@
 #include <stdexcept>
 #include <string>
 
+#include <fmt/format.h>
+
 #include "steering/magnet.hpp"
 
 namespace needlefem::steering {
 
 void CompliantNeedleHinge::validate() const {
-  auto require = [](bool ok, const char* what, double value) {
+  auto require = [](bool ok, const char* what, double value, const char* unit) {
     if (!ok || !std::isfinite(value))
-      throw std::invalid_argument(std::string("compliant needle: ") + what + ", got " + std::to_string(value));
+      throw std::invalid_argument(fmt::format("compliant needle: {}, got {:.6g} {}", what, value, unit));
   };
-  require(neck_length_m > 0.0, "neck length must be positive", neck_length_m);
-  require(neck_diameter_m > 0.0, "neck diameter must be positive", neck_diameter_m);
-  require(head_length_m > 0.0, "head length must be positive", head_length_m);
-  require(youngs_modulus_pa > 0.0, "Young's modulus must be positive", youngs_modulus_pa);
+  require(neck_length_m > 0.0, "neck length must be positive", neck_length_m, "m");
+  require(neck_diameter_m > 0.0, "neck diameter must be positive", neck_diameter_m, "m");
+  require(head_length_m > 0.0, "head length must be positive", head_length_m, "m");
+  require(youngs_modulus_pa > 0.0, "Young's modulus must be positive", youngs_modulus_pa, "Pa");
   require(tissue_spring_constant_n_per_m2 >= 0.0, "tissue spring constant must be >= 0",
-          tissue_spring_constant_n_per_m2);
+          tissue_spring_constant_n_per_m2, "N/m^2");
 }
 
 double CompliantNeedleHinge::neck_second_moment_m4() const {
@@ -56,8 +58,8 @@ double flux_density_for_turning_angle_t(const CompliantNeedleHinge& hinge, doubl
   // cos(90 deg) evaluates to 6e-17, not 0: treat pulls within 1e-9 of perpendicular as perpendicular.
   const double cos_phi = std::cos(force_angle_rad);
   if (!(cos_phi > 1e-9))
-    throw std::domain_error("compliant needle: a pull at " + std::to_string(force_angle_rad * 180.0 / std::numbers::pi) +
-                            " deg to the head has no turning component (cos(phi) <= 0)");
+    throw std::domain_error(fmt::format("compliant needle: a pull at {:.6g} deg to the head has no turning component "
+                                        "(cos(phi) <= 0)", force_angle_rad * 180.0 / std::numbers::pi));
   if (!(gap_area_m2 > 0.0)) throw std::domain_error("compliant needle: gap area must be positive");
   // Eq. 2.7 solved for F, then F = B^2 A_g / (2 mu0) solved for B.
   const double force_n = turning_angle_rad *

@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include <fmt/format.h>
+
 namespace needlefem::steering {
 
 namespace {
@@ -18,16 +20,16 @@ double quarter_solid_angle(double width, double length, double z) {
 }  // namespace
 
 void BlockMagnet::validate() const {
-  auto require_positive = [](double value, const char* name) {
+  auto require_positive = [](double value, const char* name, const char* unit) {
     if (!(value > 0.0) || !std::isfinite(value))
-      throw std::invalid_argument(std::string("block magnet: ") + name + " must be positive and finite, got " +
-                                  std::to_string(value));
+      throw std::invalid_argument(fmt::format("block magnet: {} must be positive and finite, got {:.6g}{}", name, value,
+                                              unit));
   };
-  require_positive(residual_flux_density_t, "residual flux density");
-  require_positive(pole_width_m, "pole width");
-  require_positive(pole_length_m, "pole length");
-  require_positive(thickness_m, "thickness");
-  require_positive(correction_factor, "correction factor");
+  require_positive(residual_flux_density_t, "residual flux density", " T");
+  require_positive(pole_width_m, "pole width", " m");
+  require_positive(pole_length_m, "pole length", " m");
+  require_positive(thickness_m, "thickness", " m");
+  require_positive(correction_factor, "correction factor", "");
 }
 
 double axial_flux_density_t(const BlockMagnet& m, double distance_m) {
@@ -43,8 +45,8 @@ double distance_for_flux_density_m(const BlockMagnet& m, double flux_density_t) 
   m.validate();
   const double at_face = axial_flux_density_t(m, 0.0);
   if (!(flux_density_t > 0.0) || flux_density_t >= at_face)
-    throw std::domain_error("block magnet: wanted flux density " + std::to_string(flux_density_t) +
-                            " T is outside (0, " + std::to_string(at_face) + " T), the range this magnet gives");
+    throw std::domain_error(fmt::format("block magnet: wanted flux density {:.6g} T is outside (0, {:.6g} T), the range "
+                                        "this magnet gives", flux_density_t, at_face));
   // Bracket: grow the far end until B has dropped below the target, then bisect to round-off.
   const double size = m.pole_width_m + m.pole_length_m + m.thickness_m;
   double near = 0.0, far = size;
