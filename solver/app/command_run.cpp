@@ -37,7 +37,9 @@ void run_command(const CaseOptions& options) {
 
 void add_run_command(CLI::App& app) {
   add_case_command(app, "run",
-                   "Solve a case's tissue mechanics with IDA: HDF5/XDMF fields, history.csv and summary.json",
+                   "Solve a case's tissue mechanics with IDA: HDF5/XDMF fields, history.csv and summary.json.\n"
+                   "Options after `--` go to PETSc and SUNDIALS unchanged. Ctrl-C or SIGTERM stops the run after the\n"
+                   "step in progress, keeping the output times it has written (a second Ctrl-C stops it at once).",
                    "out/run", run_command);
 }
 

@@ -14,7 +14,6 @@
 #include <unistd.h>
 
 #include "app/commands.hpp"
-#include "case/schema.hpp"
 #include "integration/blas_threads.hpp"
 #include "interrupt/interrupt_guard.hpp"
 
@@ -32,9 +31,10 @@ void CaseOptions::add_to(CLI::App& command, const std::string& default_out) {
   command.add_option("--set", overrides, "Override a case key, e.g. --set needle.radius_mm=0.83")
       ->type_name("KEY=VALUE");
   command.add_option("--out", out_dir, "Output directory")->capture_default_str();
-  std::string keys = "\nCase keys (type, range, default; units are in the names):\n";
-  for (const auto& spec : case_schema()) keys += "  " + describe_key(spec) + "\n";
-  command.footer(keys);
+  // The key list is long (every key with its help): it has a command of its own rather than
+  // burying this command's few options.
+  command.footer("Case keys: `needlefem keys` lists them all with type, unit, range and default;\n"
+                 "`needlefem keys PREFIX` only those starting with PREFIX (e.g. needle, motion.).");
 }
 
 void add_case_command(CLI::App& app, const std::string& name, const std::string& description,

@@ -487,10 +487,15 @@ SceneMeshInfo mesh_block(const Case& c, const std::filesystem::path& msh_file) {
 
 }  // namespace
 
-SceneMeshInfo build_scene_mesh(const Case& c, const std::filesystem::path& msh_file) {
+SceneMeshInfo build_scene_mesh(const Case& c, const std::filesystem::path& msh_file, std::FILE* progress) {
   SceneMeshInfo info;
   GmshSession::on_fresh_thread([&] {
     require_valid_scene(c);
+    if (progress) {
+      fmt::print(progress, "mesh: meshing the {} scene with gmsh (mesh.refinement_level {})\n", c.text("scene.kind"),
+                 c.integer("mesh.refinement_level"));
+      std::fflush(progress);
+    }
     const auto start = std::chrono::steady_clock::now();
     GmshSession session("needlefem");
     GmshSession::guarded([&] {
@@ -498,6 +503,10 @@ SceneMeshInfo build_scene_mesh(const Case& c, const std::filesystem::path& msh_f
     });
     info.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   });
+  if (progress) {
+    fmt::print(progress, "mesh: meshed in {:.1f} s: {}\n", info.seconds, msh_file.string());
+    std::fflush(progress);
+  }
   return info;
 }
 

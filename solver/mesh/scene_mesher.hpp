@@ -11,6 +11,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdio>
 #include <filesystem>
 #include <string>
 
@@ -50,8 +51,9 @@ struct SceneMeshInfo {
 };
 
 // Throws CaseError for impossible geometry (naming the violated rule) and std::runtime_error
-// when gmsh fails.
-SceneMeshInfo build_scene_mesh(const Case& c, const std::filesystem::path& msh_file);
+// when gmsh fails. On `progress` (nullptr: none), a line when gmsh starts and one when it has
+// written the mesh: fine levels mesh for long with nothing else to show.
+SceneMeshInfo build_scene_mesh(const Case& c, const std::filesystem::path& msh_file, std::FILE* progress);
 
 // Building blocks for other meshers of the needle alone (prbm_check/), inside a GmshSession:
 // adds paper 000's compliant tip (millimetres, axis +z, rear face z = 0) to the current model as

@@ -7,7 +7,7 @@
 
 namespace needlefem {
 
-SceneModel load_scene_model(const Case& c, const std::filesystem::path& out_dir) {
+SceneModel load_scene_model(const Case& c, const std::filesystem::path& out_dir, std::FILE* progress) {
   SceneModel scene;
   const auto user_file = c.path("scene.mesh_file");
   if (!user_file.empty()) {
@@ -17,7 +17,7 @@ SceneModel load_scene_model(const Case& c, const std::filesystem::path& out_dir)
     scene.user_mesh = true;
   } else {
     scene.msh_file = out_dir / "mesh.msh";
-    scene.info = build_scene_mesh(c, scene.msh_file);
+    scene.info = build_scene_mesh(c, scene.msh_file, progress);
   }
   if (scene.user_mesh) require_readable_msh(scene.msh_file);
   scene.mesh = read_msh(scene.msh_file);

@@ -2,6 +2,7 @@
 // .msh taken), read into a TetMesh and checked. Every command that needs a mesh calls this.
 #pragma once
 
+#include <cstdio>
 #include <filesystem>
 
 #include "mesh/scene_mesher.hpp"
@@ -20,10 +21,11 @@ struct SceneModel {
   bool user_mesh = false;
 };
 
-// Meshes the scene into out_dir/mesh.msh (or reads scene.mesh_file). Throws CaseError for bad
-// input and std::runtime_error for meshing failures; inverted elements are reported in
-// `quality`, and require_valid_elements() turns them into an error.
-SceneModel load_scene_model(const Case& c, const std::filesystem::path& out_dir);
+// Meshes the scene into out_dir/mesh.msh (or reads scene.mesh_file), saying so on `progress`
+// (build_scene_mesh; nullptr: silent). Throws CaseError for bad input and std::runtime_error for
+// meshing failures; inverted elements are reported in `quality`, and require_valid_elements()
+// turns them into an error.
+SceneModel load_scene_model(const Case& c, const std::filesystem::path& out_dir, std::FILE* progress);
 void require_valid_elements(const SceneModel& scene);
 
 }  // namespace needlefem

@@ -257,7 +257,7 @@ nlohmann::json run_case(const Case& c, const RunOptions& options) {
                                   record.output_times_written));
   };
   try {
-    scene = std::make_unique<SceneModel>(load_scene_model(c, options.out_dir));
+    scene = std::make_unique<SceneModel>(load_scene_model(c, options.out_dir, options.progress));
     require_valid_elements(*scene);
     record.mesh_s = seconds_since(start);
     stop_if_asked(times.front());

@@ -21,7 +21,7 @@ std::filesystem::path fresh_folder() {
 
 SceneModel meshed(const Case& input) {
   const auto folder = fresh_folder();
-  SceneModel scene = load_scene_model(input, folder);
+  SceneModel scene = load_scene_model(input, folder, nullptr);
   std::filesystem::remove_all(folder);
   return scene;
 }

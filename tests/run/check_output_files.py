@@ -39,6 +39,12 @@ import time
 import h5py
 
 SKIP = 77  # ctest's SKIP_RETURN_CODE for this script
+PROGRESS = re.compile(r"^(mesh: meshing the |mesh: meshed in |run: +t = )")
+
+
+def error_lines(stderr):
+    """stderr without the progress lines of meshing and of each output time."""
+    return [line for line in stderr.splitlines() if not PROGRESS.match(line)]
 
 
 def check_consistent(out, failures, label):
@@ -172,7 +178,7 @@ def check_interrupt(args, run, failures):
         if not running:
             failures.append(f"inconclusive: the run ended before {sig.name} was sent")
             continue
-        errors = [line for line in stderr.splitlines() if not line.startswith("run: ")]
+        errors = error_lines(stderr)
         if process.returncode != 128 + sig.value:
             failures.append(f"{sig.name}: exit {process.returncode}, expected {128 + sig.value}")
         if len(errors) != 1 or f"needlefem: stopped by {sig.name} at t = " not in errors[0]:
@@ -227,7 +233,7 @@ def check_full_disk_mid_run(args, run, failures):
             print("skipped: a user namespace cannot mount a tmpfs here")
             sys.exit(SKIP)
         status, stderr, mount_point = outcome
-        errors = [line for line in stderr.splitlines() if not line.startswith("run: ")]
+        errors = error_lines(stderr)
         if status == 0:
             failures.append(f"{label}: a run on a full disk exited 0")
             continue
