@@ -28,6 +28,7 @@ import csv
 import json
 import math
 import pathlib
+import re
 import shutil
 import subprocess
 import sys
@@ -266,7 +267,9 @@ def failure(args):
         check(int(h5["/series/time_count"][0]) == completed, "result.h5 lists the completed output times")
         check(h5["/series/cell/von_mises"][completed - 1].max() > 0 or completed == 1, "their fields are readable")
     check(len(history(out)) == completed, "history.csv has a row per completed output time")
-    check((out / "result.xdmf").exists(), "result.xdmf exists")
+    for name in ("result.xdmf", "result_surfaces.xdmf"):
+        listed = {float(t) for t in re.findall(r'<Time Value="([^"]+)"', (out / name).read_text())}
+        check(len(listed) == completed, f"{name} lists the {completed} completed output times ({len(listed)})")
 
 
 def main():
