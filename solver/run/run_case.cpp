@@ -169,7 +169,9 @@ nlohmann::json summary_json(const Case& c, const material::Material* material, c
   for (int q = 0; q < kScalarQuantities; ++q)
     if (std::isfinite(record.maxima[q].value)) s["max"][kSummaryNames[q]] = record.maxima[q].to_json();
   s["max_note"] = "maximum over all tissue quadrature points and output times; position_mm is the point's "
-                  "reference (undeformed) position";
+                  "reference (undeformed) position. strain_rate_per_s is the max principal strain rate, the one the "
+                  "strain-rate limit judges; equivalent_strain_rate_per_s, sqrt(2/3 D:D), is not judged (see "
+                  "safety.strain_rate_per_s.quantity)";
   for (std::size_t i = 0; i < record.reactions.size(); ++i) {
     const Point3& r = record.reactions[i];
     s["reactions"][record.surfaces[i]] = {r[0], r[1], r[2]};
@@ -370,6 +372,8 @@ nlohmann::json run_case(const Case& c, const RunOptions& options) {
     if (needle) failed.update(needle->summary());
     failed["status"] = "failed";
     failed["error"] = e.what();
+    // A run that stopped early can fail a limit but not pass one: the rest of its history is unknown.
+    if (failed.value("verdict", "") == "pass") failed["verdict"] = "undecided";
     write_json_atomically(summary_file, failed);
     throw;
   }
