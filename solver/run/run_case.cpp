@@ -104,8 +104,10 @@ std::vector<std::string> reaction_surfaces(const TetMesh& mesh, const mechanics:
 
 std::vector<output::FieldSpec> field_specs() {
   using output::FieldCentre, output::FieldType;
-  std::vector<output::FieldSpec> specs{{"displacement", FieldCentre::node, FieldType::vector, "m"},
-                                       {"velocity", FieldCentre::node, FieldType::vector, "m/s"},
+  // Lengths in the mesh's millimetres (output/result_file.hpp): Warp By Vector at scale 1 shows
+  // the deformation.
+  std::vector<output::FieldSpec> specs{{"displacement", FieldCentre::node, FieldType::vector, "mm", kMmPerM},
+                                       {"velocity", FieldCentre::node, FieldType::vector, "mm/s", kMmPerM},
                                        {"cauchy_stress", FieldCentre::cell, FieldType::symmetric_tensor, "Pa"}};
   for (const auto& q : fields::scalar_quantities()) specs.push_back({q.name, FieldCentre::cell, FieldType::scalar, q.unit});
   for (const auto& q : fields::scalar_quantities())

@@ -7,7 +7,8 @@
              Cauchy sigma = 2 (l^2 - 1/l) (W1 + W2 / l) (Holzapfel 2000 §7.2), which is also the
              von Mises and the max principal stress; max principal ln V = ln l; strain rate
              D_xx = d ln l / dt = 0.2 / l (equivalent rate the same for isochoric stretching);
-             reaction on x_max = nominal stress sigma / l times the undeformed area; every limit
+             reaction on x_max = nominal stress sigma / l times the undeformed area; the stored
+             displacement (mm) = ((l-1) X, (l^-1/2 - 1) Y, (l^-1/2 - 1) Z); every limit
              passes, and summary "verdict" and the last line printed say so with the values.
   brain-tip  coarse paper-001 cube, needle in frictional contact, default tolerances: summary keys
              (needle, thresholds, contact), signs at every output time (the needle pushes the
@@ -169,9 +170,37 @@ def block(args):
     close(float(last["max_equivalent_strain_rate"]), RATE / l_end, 1e-3, "equivalent strain rate at t = 1 s")
     close(summary["reactions"]["x_max"][0], sigma / l_end * AREA, 1e-3, "reaction on x_max = nominal stress x area")
     close(-summary["reactions"]["x_min"][0], sigma / l_end * AREA, 1e-3, "reaction on x_min balances x_max")
+    check_block_displacement(out, l_end)
     # ln 1.2 = 0.182 < 0.19, 0.2 1/s < 10 1/s and sigma < 120 kPa everywhere in the homogeneous block.
     check_verdict(result.stdout, summary)
     check(summary["verdict"] == "pass", "the block passes every limit")
+
+
+def attribute_text(dataset, name):
+    value = dataset.attrs[name]
+    return value.decode() if isinstance(value, bytes) else str(value)
+
+
+def check_block_displacement(out, stretch):
+    """The stored displacement and velocity are in the mesh's millimetres (ParaView's Warp By Vector
+    at scale 1): u = ((l - 1) X, (l^-1/2 - 1) Y, (l^-1/2 - 1) Z) from the rollers on the min faces,
+    and at the ramp's end v_x = 0.2 X mm/s (incompressible: ~1e-4 off, as the strain)."""
+    with h5py.File(out / "result.h5", "r") as h5:
+        last = int(h5["/series/time_count"][0]) - 1
+        x = h5["/mesh/coordinates_mm"][()]
+        x = x - x.min(axis=0)
+        u, v = h5["/series/node/displacement"][last], h5["/series/node/velocity"][last]
+        units = tuple(attribute_text(h5[f"/series/node/{name}"], "unit") for name in ("displacement", "velocity"))
+    check(units == ("mm", "mm/s"), f"displacement and velocity units {units}")
+    lateral = stretch ** -0.5 - 1
+    expected = x * [stretch - 1, lateral, lateral]
+    error = abs(u - expected).max()
+    check(error <= 1e-3 * (stretch - 1), f"displacement in mm = closed form within {error:.2e} mm "
+          f"(largest {abs(u).max():.4f} mm, (l - 1) x 1 mm = {stretch - 1:.4f} mm)")
+    error = abs(v[:, 0] - RATE * x[:, 0]).max()
+    check(error <= 1e-3 * RATE, f"velocity v_x in mm/s = 0.2 X within {error:.2e} mm/s")
+    xdmf = (out / "result.xdmf").read_text()
+    check('<Information Name="unit:displacement" Value="mm"/>' in xdmf, "result.xdmf states the displacement's unit")
 
 
 def vector(row, prefix, suffix):
@@ -249,7 +278,8 @@ def brain_tip(args):
         pressure, slip = h5["/series/node/contact_pressure"][2], h5["/series/node/contact_slip"][2]
         off_cavity = [i for i in range(nodes) if i not in cavity_nodes]
         check(pressure.min() >= 0 and pressure.max() > 0, f"contact pressure in [0, {pressure.max():.3g}] Pa")
-        check(slip.max() > 0, f"the tissue slips on the needle: max slip {slip.max() * 1e3:.3g} mm")
+        check(attribute_text(h5["/series/node/contact_slip"], "unit") == "mm" and slip.max() > 0,
+              f"the tissue slips on the needle: max slip {slip.max():.3g} mm")
         check(not pressure[off_cavity].any() and not slip[off_cavity].any(), "contact fields are 0 off the cavity")
 
 
