@@ -28,7 +28,7 @@ def read(path):
         data = {name: f[name][()] for name in f if isinstance(f[name], h5py.Dataset)}
         data["scene"] = {name: f["scene"][name][()] for name in f["scene"]}
         data["outcome"] = {k: float(f.attrs[k]) for k in
-                           ("tip_path_clearance_m", "needle_clearance_m", "miss_distance_m")}
+                           ("obstacle_clearance_tip_path_m", "obstacle_clearance_needle_m", "target_miss_distance_m")}
     return data
 
 
@@ -87,9 +87,10 @@ def main(argv):
         if row == 2:
             ax.set_xlabel("insertion depth [mm]")
     o = data["outcome"]
-    fig.suptitle(f"{args.path_file.name}: needle clearance {o['needle_clearance_m'] * 1e3:.2f} mm, "
-                 f"tip-path clearance {o['tip_path_clearance_m'] * 1e3:.2f} mm, "
-                 f"miss distance {o['miss_distance_m'] * 1e3:.3f} mm")
+    fig.suptitle(f"{args.path_file.name}: obstacle clearance of the needle "
+                 f"{o['obstacle_clearance_needle_m'] * 1e3:.2f} mm, of the tip path "
+                 f"{o['obstacle_clearance_tip_path_m'] * 1e3:.2f} mm; "
+                 f"target miss distance {o['target_miss_distance_m'] * 1e3:.3f} mm")
     fig.savefig(png, dpi=110)
     print(png)
 

@@ -14,8 +14,10 @@ usage: /usr/bin/python3 postprocess/sweep_figures.py COMMAND ARGS [--png OUT.png
   strain-rate SWEEP_DIR [--grid G]    max strain rate against time, one line per speed
                                       (slow/medium/fast when there are three), with the limit (Fig. 6)
   safety-map SWEEP_DIR [--grid G] [--x KEY] [--y KEY]
-                                      safe/unsafe/failed/impossible over two swept keys (default: the
-                                      first two that vary), one panel per value of the other swept keys
+                                      each design's verdict (pass/fail: the critical-distance values
+                                      against the limits, labelled with the limits that fail), run
+                                      failed or impossible, over two swept keys (default: the first two
+                                      that vary), one panel per value of the other swept keys
   safety-steering SWEEP_DIR [--grid G]
                                       the designer's trade-off: each limit's safety margin
                                       1 - (critical-distance value)/limit against the largest lateral
@@ -233,8 +235,27 @@ def short(key):
     return key.rsplit(".", 1)[-1]
 
 
+def map_mark(sweep, i):
+    """(mark, label) of design point i on the safety map: its verdict with the failing limits, or
+    why it has none (run failed, impossible with its rules, pending)."""
+    t = sweep.table
+    status = t["status"][i]
+    if status == "completed":
+        if t["verdict"][i] == 0:
+            failing = [c[len("verdict_"):] for c in sweep.columns if c.startswith("verdict_") and t[c][i] == 0]
+            return "fail", ", ".join(failing)
+        # The point maxima are mesh-dependent next to a needle edge: say when they alone fail.
+        return "pass", "point maxima fail" if t["safe"][i] == 0 else ""
+    if status == "failed":
+        return "run failed", ""
+    return status, t["rules"][i] if status == "impossible" else ""
+
+
 def safety_map(sweep, png, x=None, y=None, grid=None):
-    """Every design point over two swept keys: safe, unsafe (which limits), failed, impossible."""
+    """Every design point over two swept keys: its verdict (which limits fail), run failed, impossible."""
+    if "verdict" not in sweep.table:
+        raise SystemExit(f"{sweep.dir}/sweep.h5: no verdict column (an older table; `needlefem sweep SWEEP.toml "
+                         f"--out {sweep.dir} --list` rewrites it)")
     rows = sweep.indices(grid, status=None)
     keys = varying_keys(sweep, rows)
     x = x or (keys[0] if keys else sweep.swept_keys[0])
@@ -249,23 +270,15 @@ def safety_map(sweep, png, x=None, y=None, grid=None):
     columns = min(3, len(panels))
     lines = math.ceil(len(panels) / columns)
     fig, axes = plt.subplots(lines, columns, figsize=(4.6 * columns, 3.9 * lines), squeeze=False)
-    pass_columns = [c for c in sweep.columns if c.startswith("pass_")]
-    styles = {"safe": dict(marker="o", color="#2ca02c"), "unsafe": dict(marker="X", color="#d62728"),
-              "failed": dict(marker="^", color="k"), "impossible": dict(marker="s", color="#b0b0b0"),
+    styles = {"pass": dict(marker="o", color="#2ca02c"), "fail": dict(marker="X", color="#d62728"),
+              "run failed": dict(marker="^", color="k"), "impossible": dict(marker="s", color="#b0b0b0"),
               "pending": dict(marker="o", color="#1f77b4", fillstyle="none")}
     seen = set()
     for ax, panel in zip(axes.flat, panels):
         for i in rows:
             if tuple(t[k][i] for k in panel_keys) != panel:
                 continue
-            status = t["status"][i]
-            note = ""
-            if status == "completed":
-                failed = [c[len("pass_"):] for c in pass_columns if t[c][i] == 0]
-                status = "unsafe" if t["safe"][i] == 0 else "safe"
-                note = ", ".join(failed)
-            elif status == "impossible":
-                note = t["rules"][i]
+            status, note = map_mark(sweep, i)
             yv = t[y][i] if y else 0.0
             ax.plot(t[x][i], yv, ls="none", ms=11, label=None if status in seen else status, **styles[status])
             seen.add(status)
@@ -284,7 +297,8 @@ def safety_map(sweep, png, x=None, y=None, grid=None):
         ax.axis("off")
     handles = [plt.Line2D([], [], ls="none", ms=9, label=s, **styles[s]) for s in styles if s in seen]
     fig.legend(handles=handles, loc="upper right", fontsize=8)
-    fig.suptitle("Safe and unsafe designs (labels: exceeded limits or violated geometry rules)", fontsize=10)
+    fig.suptitle(textwrap.fill("Verdict per design: critical-distance values against the limits (labels: failing "
+                               "limits or violated geometry rules)", 40 * columns), fontsize=10, x=0.02, ha="left")
     finish(fig, png)
 
 

@@ -1,7 +1,11 @@
 // `needlefem force-trajectory CASE.toml [--out DIR]`: paper 000's insertion force (Eq. 3.2;
 // insertion_force/force_trajectory.hpp) from the elastic energy of a brain-tip mechanics run,
 // written as DIR/<case>.h5 in the replay trajectory format (`needlefem replay` streams it) with
-// DIR/<case>.json (rupture point, fracture force, the energy fit and its range).
+// DIR/<case>.json (rupture point, fracture force, the energy fit and energy_extrapolated_by: the
+// deformation stage's end over the run's last sample).
+// A missing energy history stops with the command that makes it (insertion_force.energy_case); a
+// deformation stage beyond insertion_force.extrapolation_warn_factor times the run's last sample
+// is warned about on stderr, beyond insertion_force.extrapolation_limit_factor refused.
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -32,6 +36,52 @@ insertion::InsertionForceParameters parameters_from_case(const Case& input) {
   return p;
 }
 
+// A path as the user can type it here: relative to the working directory when inside it.
+std::string typed(const std::filesystem::path& path) {
+  std::error_code error;
+  const std::filesystem::path relative = std::filesystem::relative(path, error);
+  if (!error && !relative.empty() && *relative.begin() != "..") return relative.string();
+  return std::filesystem::weakly_canonical(path, error).string();
+}
+
+// The energy history must exist; if not, the error names the run that makes it.
+void require_energy_history(const Case& input, const std::filesystem::path& history) {
+  if (std::filesystem::exists(history)) return;
+  const std::filesystem::path run_case = input.path("insertion_force.energy_case");
+  if (run_case.empty())
+    throw input.error("insertion_force.energy_history",
+                      fmt::format("{} does not exist; make it with `needlefem run CASE --out {}` of a brain-tip case "
+                                  "(insertion_force.energy_case names it)", typed(history),
+                                  typed(history.parent_path())));
+  if (!std::filesystem::is_regular_file(run_case))
+    throw input.error("insertion_force.energy_case", fmt::format("{}: no such case file", typed(run_case)));
+  throw input.error("insertion_force.energy_history",
+                    fmt::format("{} does not exist; make it first: {} run {} --out {}", typed(history),
+                                typed(std::filesystem::read_symlink("/proc/self/exe")), typed(run_case),
+                                typed(history.parent_path())));
+}
+
+// How many times over the deformation stage extrapolates the energy run: warned or refused.
+double energy_extrapolation(const Case& input, const insertion::InsertionForceTrajectory& result,
+                            const insertion::InsertionForceParameters& parameters,
+                            const insertion::DeformationEnergy& energy) {
+  const double stage_end_m = result.ruptured ? result.rupture_displacement_m : parameters.travel_m;
+  const double factor = stage_end_m / energy.largest_sample_m;
+  const std::string reach =
+      fmt::format("the deformation stage runs to x = {:.3g} mm, {:.3g} times the energy run's last sample ({:.3g} mm)",
+                  stage_end_m * 1e3, factor, energy.largest_sample_m * 1e3);
+  const double limit = input.real("insertion_force.extrapolation_limit_factor");
+  const double warn = input.real("insertion_force.extrapolation_warn_factor");
+  if (factor > limit)
+    throw input.error("insertion_force.extrapolation_limit_factor",
+                      fmt::format("{}, more than {:g} times: sample it with a longer run (motion.duration_s of the "
+                                  "energy case) or raise this factor", reach, limit));
+  if (factor > warn)
+    fmt::print(stderr, "force-trajectory: warning: {}: the force there is the power-law fit's extrapolation "
+               "(insertion_force.extrapolation_warn_factor = {:g})\n", reach, warn);
+  return factor;
+}
+
 void run_force_trajectory(const CaseOptions& options) {
   const Case input = Case::load(options.case_file, options.overrides);
   const std::filesystem::path history = input.path("insertion_force.energy_history");
@@ -39,6 +89,7 @@ void run_force_trajectory(const CaseOptions& options) {
     throw input.error("insertion_force.energy_history",
                       "needed: history.csv of a `needlefem run` of the brain-tip scene (its elastic energy)");
   const insertion::InsertionForceParameters parameters = parameters_from_case(input);
+  require_energy_history(input, history);
   insertion::EnergySamples samples;
   insertion::DeformationEnergy energy;
   try {
@@ -54,6 +105,7 @@ void run_force_trajectory(const CaseOptions& options) {
     // The schema keeps every other parameter positive: only F_r <= 2 pi J_c r is left to reject.
     throw input.error("insertion_force.rupture_force_n", e.what());
   }
+  const double extrapolation = energy_extrapolation(input, result, parameters, energy);
   result.trajectory.source_case = input.to_toml();
 
   const std::filesystem::path out(options.out_dir);
@@ -76,7 +128,7 @@ void run_force_trajectory(const CaseOptions& options) {
       {"rupture_force_n", parameters.rupture_force_n},
       {"rupture_displacement_mm", result.rupture_displacement_m * 1e3},
       {"rupture_time_s", result.rupture_time_s},
-      {"rupture_extrapolates_energy_by", result.rupture_displacement_m / energy.largest_sample_m},
+      {"energy_extrapolated_by", extrapolation},
       {"fracture_force_n", result.fracture_force_n},
       {"steady_deformation_mm", result.steady_deformation_m * 1e3},
       {"crack_jump_at_rupture_mm", (result.rupture_displacement_m - result.steady_deformation_m) * 1e3},

@@ -2,8 +2,9 @@
 //   --turning-angle-deg A...  -> flux density (Eq. 2.8), pull force (Eq. 2.1-2.2), magnet distance (Eq. 2.3 root)
 //   --distance-mm X...        -> flux density (Eq. 2.3), pull force, turning angle (Eq. 2.7)
 // Defaults are the paper's worked example (l = 1 mm, L = 3.5 mm, d = 0.2 mm, pole 50 x 60 mm,
-// steel neck, pull along the head, no tissue). The paper gives no residual flux density or
-// thickness for its magnet; the defaults (N42 NdFeB, 20 mm) are stated in --help and echoed.
+// steel neck, pull along the head, no tissue, turning 15 and 30 deg: 0.0391 and 0.0553 T), so
+// `needlefem magnet` alone prints it. The paper gives no residual flux density or thickness for
+// its magnet; the defaults (N42 NdFeB, 20 mm) are stated in --help and echoed.
 #include <cmath>
 #include <memory>
 #include <numbers>
@@ -38,6 +39,8 @@ struct MagnetOptions {
 };
 
 constexpr double deg = std::numbers::pi / 180.0;
+// Paper 000's worked example: these angles need 0.0391 and 0.0553 T.
+const std::vector<double> kWorkedExampleAnglesDeg{15.0, 30.0};
 
 nlohmann::json run(const MagnetOptions& o) {
   const steering::CompliantNeedleHinge hinge{o.neck_length_mm * 1e-3, o.neck_diameter_mm * 1e-3,
@@ -103,9 +106,11 @@ void add_magnet_command(CLI::App& app) {
   auto* command = app.add_subcommand(
       "magnet",
       "Paper 000's magnet-steered compliant needle: flux density, pull force, magnet distance and head turning\n"
-      "angle (Eq. 2.1-2.3, 2.7, 2.8 with the gap area A_g), printed as JSON. Defaults: the paper's worked example.");
+      "angle (Eq. 2.1-2.3, 2.7, 2.8 with the gap area A_g), printed as JSON. Defaults: the paper's worked example\n"
+      "(15 and 30 deg need 0.0391 and 0.0553 T); `needlefem magnet` alone prints it.");
   auto* by_angle = command->add_option("--turning-angle-deg", o->turning_angles_deg,
-                                       "Wanted head turning angle(s) -> flux density, force, magnet distance");
+                                       "Wanted head turning angle(s) -> flux density, force, magnet distance "
+                                       "[15 30 without --distance-mm: the worked example]");
   auto* by_distance = command->add_option("--distance-mm", o->distances_mm,
                                           "Magnet distance(s) on the pole axis -> flux density, force, turning angle");
   by_angle->excludes(by_distance);
@@ -129,8 +134,7 @@ void add_magnet_command(CLI::App& app) {
   command->add_option("--correction-factor", o->correction_factor, "Correction on Eq. 2.3 (paper: 0.8-0.9)")
       ->capture_default_str();
   command->callback([o] {
-    if (o->turning_angles_deg.empty() && o->distances_mm.empty())
-      throw std::invalid_argument("magnet: give --turning-angle-deg or --distance-mm");
+    if (o->turning_angles_deg.empty() && o->distances_mm.empty()) o->turning_angles_deg = kWorkedExampleAnglesDeg;
     fmt::print("{}\n", run(*o).dump(2));
   });
 }

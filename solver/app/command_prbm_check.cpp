@@ -17,6 +17,8 @@ namespace needlefem::app {
 
 namespace {
 
+nlohmann::json up_to_or_null(double degrees) { return degrees > 0.0 ? nlohmann::json(degrees) : nlohmann::json(); }
+
 nlohmann::json to_json(const prbm::PrbmCheckResult& r) {
   nlohmann::json rows = nlohmann::json::array();
   for (const auto& row : r.rows)
@@ -43,8 +45,11 @@ nlohmann::json to_json(const prbm::PrbmCheckResult& r) {
           {"prbm_lever_mm", r.prbm_lever_m * 1e3},
           {"fem_load_lever_mm", r.fem_load_lever_m * 1e3},
           {"tolerance_percent", r.tolerance_percent},
-          {"prbm_accurate_up_to_deg_follower", r.accurate_up_to_deg},
-          {"prbm_accurate_up_to_deg_dead", r.dead_accurate_up_to_deg},
+          // null: even the smallest tabulated angle is off by more than the tolerance.
+          {"prbm_accurate_up_to_deg_follower", up_to_or_null(r.accurate_up_to_deg)},
+          {"prbm_accurate_up_to_deg_dead", up_to_or_null(r.dead_accurate_up_to_deg)},
+          {"prbm_accuracy_follower", prbm::accuracy_text(r, false)},
+          {"prbm_accuracy_dead", prbm::accuracy_text(r, true)},
           {"mesh", {{"nodes", r.nodes}, {"tets", r.elements}, {"dofs", r.dofs}, {"element_mm", r.element_mm},
                     {"neck_element_mm", r.neck_element_mm}}},
           {"seconds", {{"mesh", r.mesh_seconds}, {"solve", r.solve_seconds}, {"linear_solves", r.linear_solve_seconds}}}};
@@ -61,8 +66,8 @@ void print_table(const prbm::PrbmCheckResult& r) {
     fmt::print("{:>10.4g} {:>9.3f} {:>12.3f} {:>9.2f} {:>9.3f} {:>10.2f} {:>9.3f} {:>13.3f} {:>8.4f}\n", row.force_n,
                row.prbm_deg, row.fem_follower_deg, row.error_percent(), row.fem_dead_deg, row.dead_error_percent(),
                row.fem_linear_deg, row.prbm_load_lever_deg, row.max_corotated_strain);
-  fmt::print("PRBM within {:g} % up to {:.4g} deg (follower load), {:.4g} deg (dead load); {} tets, {} dofs, {:.1f} s\n",
-             r.tolerance_percent, r.accurate_up_to_deg, r.dead_accurate_up_to_deg, r.elements, r.dofs,
+  fmt::print("PRBM against the FEM: follower load {}; dead load {}; {} tets, {} dofs, {:.1f} s\n",
+             prbm::accuracy_text(r, false), prbm::accuracy_text(r, true), r.elements, r.dofs,
              r.mesh_seconds + r.solve_seconds);
 }
 

@@ -1,14 +1,15 @@
 // `needlefem run CASE.toml [--out DIR] [--set k=v] [-- PETSc/SUNDIALS options]`: solves the
 // case's tissue mechanics over its history (run/run_case.hpp) and writes
 //   DIR/mesh.msh, DIR/result.h5 + result.xdmf (fields per output time), DIR/history.csv,
-//   DIR/summary.json (maxima with time and position, reactions, solver statistics, material,
-//   resolved case).
+//   DIR/summary.json (verdict, maxima with time and position, reactions, solver statistics,
+//   material, resolved case). The last line printed is the run's safety verdict.
 #include <fmt/core.h>
 
 #include "app/commands.hpp"
 #include "case/case.hpp"
 #include "interrupt/interrupt_guard.hpp"
 #include "run/run_case.hpp"
+#include "run/safety_report.hpp"
 
 namespace needlefem::app {
 
@@ -31,6 +32,8 @@ void run_command(const CaseOptions& options) {
              solver["wall_s"].get<double>(), solver["steps"].get<long>(), solver["newton_iterations"].get<long>(),
              solver["jacobian_setups"].get<long>(), solver["dofs"].get<long>(),
              (run_options.out_dir / "summary.json").string());
+  const std::string verdict = run::verdict_line(summary);
+  if (!verdict.empty()) fmt::print("{}\n", verdict);
 }
 
 }  // namespace

@@ -1,7 +1,8 @@
 // `needlefem steer CASE.toml [--out DIR]`: kinematic steering of paper 000's compliant needle
 // under a magnet schedule (steering/steering_path.hpp). Writes DIR/<case>.h5 (the tip path,
-// steering/path_file.hpp) and DIR/<case>.json (clearance to the obstacle, miss distance to the
-// target), and prints the summary. Plot with postprocess/plot_steering.py DIR/<case>.h5.
+// steering/path_file.hpp) and DIR/<case>.json (obstacle_* clearances of the needle and its tip
+// path, target_* miss distance and closest approach of the tip path), and prints the summary.
+// Plot with postprocess/plot_steering.py DIR/<case>.h5.
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -29,11 +30,12 @@ nlohmann::json summary(const std::vector<steering::PathSample>& path, const stee
     max_force = std::max(max_force, s.force_n);
   }
   const auto& tip = path.back().tip_m;
-  return {{"tip_path_clearance_mm", outcome.tip_path_clearance_m * 1e3},
-          {"needle_clearance_mm", outcome.needle_clearance_m * 1e3},
+  // obstacle_*: surface-to-surface distances to the obstacle; target_*: distances to the target.
+  return {{"obstacle_clearance_tip_path_mm", outcome.tip_path_clearance_m * 1e3},
+          {"obstacle_clearance_needle_mm", outcome.needle_clearance_m * 1e3},
           {"clears_obstacle", outcome.needle_clearance_m > 0.0},
-          {"miss_distance_mm", outcome.miss_distance_m * 1e3},
-          {"closest_approach_mm", outcome.closest_approach_m * 1e3},
+          {"target_miss_distance_mm", outcome.miss_distance_m * 1e3},
+          {"target_closest_approach_mm", outcome.target_closest_approach_m * 1e3},
           {"target_reached", outcome.miss_distance_m <= setup.target_tolerance_m},
           {"target_tolerance_mm", setup.target_tolerance_m * 1e3},
           {"tip_stays_in_block", outcome.tip_stays_in_block},

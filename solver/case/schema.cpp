@@ -377,6 +377,15 @@ std::vector<KeySpec> build_schema() {
       text("insertion_force.energy_history", "",
            "history.csv of a `needlefem run` of the brain-tip scene (elastic_energy_j against time_s, with its "
            "summary.json beside it for the run's speed): the deformation stage's U(x); relative to the case file"),
+      text("insertion_force.energy_case", "",
+           "The case whose `needlefem run` writes energy_history (relative to the case file): while energy_history "
+           "does not exist, force-trajectory stops naming the command that makes it"),
+      real("insertion_force.extrapolation_warn_factor", 2.0, 1.0, 1e6,
+           "Warn when the deformation stage runs beyond this multiple of the energy run's last sample: the force "
+           "there is the power-law fit's extrapolation", false),
+      real("insertion_force.extrapolation_limit_factor", 10.0, 1.0, 1e6,
+           "Refuse a deformation stage beyond this multiple of the energy run's last sample (a longer run samples "
+           "it: motion.duration_s of energy_case)", false),
       real("insertion_force.fracture_toughness_j_per_m2", 164.0, 0.0, 1e6,
            "Tissue fracture toughness J_c (paper 000 gives none; default: 164 J/m^2, bovine liver by the same "
            "energy-based needle-insertion method, Gokgol et al. 2012; Azar & Hayward 2008: 76-185 J/m^2)"),

@@ -170,15 +170,22 @@ std::string type_name(FieldType type) {
   throw std::logic_error("unknown field type");
 }
 
-// Caller's values -> stored values (symmetric tensors expanded from xx yy zz xy yz xz).
-std::vector<double> stored_values(FieldType type, std::span<const double> values) {
-  if (type != FieldType::symmetric_tensor) return {values.begin(), values.end()};
-  constexpr int kFullFromVoigt[9] = {0, 3, 5, 3, 1, 4, 5, 4, 2};
-  const std::size_t count = values.size() / 6;
-  std::vector<double> full(count * 9);
-  for (std::size_t e = 0; e < count; ++e)
-    for (int k = 0; k < 9; ++k) full[e * 9 + k] = values[e * 6 + kFullFromVoigt[k]];
-  return full;
+// Caller's values -> stored values: times spec.scale, symmetric tensors expanded from
+// xx yy zz xy yz xz.
+std::vector<double> stored_values(const FieldSpec& spec, std::span<const double> values) {
+  std::vector<double> stored;
+  if (spec.type != FieldType::symmetric_tensor) {
+    stored.assign(values.begin(), values.end());
+  } else {
+    constexpr int kFullFromVoigt[9] = {0, 3, 5, 3, 1, 4, 5, 4, 2};
+    const std::size_t count = values.size() / 6;
+    stored.resize(count * 9);
+    for (std::size_t e = 0; e < count; ++e)
+      for (int k = 0; k < 9; ++k) stored[e * 9 + k] = values[e * 6 + kFullFromVoigt[k]];
+  }
+  if (spec.scale != 1.0)
+    for (double& v : stored) v *= spec.scale;
+  return stored;
 }
 
 std::string checked_field_name(const std::string& name) {
@@ -231,6 +238,7 @@ struct ResultFile::State {
     const XdmfAttribute attribute{spec.name, spec.centre == FieldCentre::node,
                                   {path, entities(spec.centre), stored_components(spec.type), false, per_time}};
     volume.grids.front().attributes.push_back(attribute);
+    volume.grids.front().information.emplace_back("unit:" + spec.name, spec.unit);
     // Boundary faces share the volume's node numbering, so node fields apply to them as is.
     if (spec.centre == FieldCentre::node)
       for (XdmfTopology& surface : surfaces.grids) surface.attributes.push_back(attribute);
@@ -412,7 +420,7 @@ void ResultFile::write_static_field(const FieldSpec& spec, std::span<const doubl
     Handle group(H5Gopen2(s.file.get(), group_path.c_str(), H5P_DEFAULT), H5Gclose, "open " + group_path);
     std::vector<hsize_t> dims{s.entities(spec.centre)};
     if (spec.type != FieldType::scalar) dims.push_back(stored_components(spec.type));
-    write_dataset(group.get(), spec.name, H5T_IEEE_F64LE, dims, stored_values(spec.type, values));
+    write_dataset(group.get(), spec.name, H5T_IEEE_F64LE, dims, stored_values(spec, values));
     Handle dataset(H5Dopen2(group.get(), spec.name.c_str(), H5P_DEFAULT), H5Dclose, "open " + spec.name);
     write_text_attribute(dataset.get(), "unit", spec.unit);
     write_text_attribute(dataset.get(), "type", type_name(spec.type));
@@ -438,7 +446,7 @@ void ResultFile::State::append(double time_s, const std::vector<std::span<const 
   const hsize_t index = times.size();
   for (std::size_t f = 0; f < series.size(); ++f) {
     const FieldSpec& spec = series[f];
-    const std::vector<double> stored = stored_values(spec.type, values[f]);
+    const std::vector<double> stored = stored_values(spec, values[f]);
     const hid_t dataset = series_datasets[f].get();
     Handle file_space(H5Dget_space(dataset), H5Sclose, "get dataspace of " + spec.name);
     std::vector<hsize_t> start{index, 0}, count{1, entities(spec.centre)};

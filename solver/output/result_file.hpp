@@ -15,7 +15,10 @@
 //   /series/{node,cell}/<f>    [capacity, n] or [capacity, n, components]
 //   /series/steps/<i>/<f>      [n] or [n, components]: time i of field f, a virtual
 //                              dataset onto /series/*/<f> (what the XDMF references)
-// Every field dataset carries attributes "unit" and "type".
+// Every field dataset carries attributes "unit" and "type". Fields are stored in the mesh's units
+// where they have a length (displacement in mm, velocity in mm/s), so that ParaView's Warp By
+// Vector at scale 1 moves the millimetre mesh by the displacement; the XDMF grid lists each
+// field's unit as <Information Name="unit:FIELD" Value="UNIT"/>.
 //
 // Tensors are written with all 9 components, row-major (xx xy xz yx yy yz zx zy zz),
 // AttributeType "Tensor". Symmetric tensors are passed in as 6 values (xx yy zz xy yz xz,
@@ -63,7 +66,8 @@ struct FieldSpec {
   std::string name;  // unique among the fields of a file; used as HDF5 and XDMF name
   FieldCentre centre = FieldCentre::node;
   FieldType type = FieldType::scalar;
-  std::string unit;  // written as an attribute, e.g. "Pa", "m", "1"
+  std::string unit;  // of the stored values, written as an attribute, e.g. "Pa", "mm", "1"
+  double scale = 1.0;  // stored value = caller's value x scale (1e3: the solver's metres to mm)
 };
 
 // Values per node/cell the caller passes: 1, 3, 6 (symmetric tensor) or 9.

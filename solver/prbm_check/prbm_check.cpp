@@ -6,6 +6,8 @@
 #include <cmath>
 #include <numbers>
 
+#include <fmt/format.h>
+
 #include "geometry/needle_tip.hpp"
 #include "prbm_check/tip_mesh.hpp"
 #include "prbm_check/tip_statics.hpp"
@@ -101,6 +103,23 @@ PrbmCheckResult run_prbm_check(const Case& input) {
   result.dead_accurate_up_to_deg = accurate_up_to(result.rows, result.tolerance_percent,
                                                   [](const PrbmCheckRow& r) { return r.dead_error_percent(); });
   return result;
+}
+
+std::string accuracy_text(const PrbmCheckResult& result, bool dead_load) {
+  const double up_to = dead_load ? result.dead_accurate_up_to_deg : result.accurate_up_to_deg;
+  if (up_to > 0.0 || result.rows.empty())
+    return fmt::format("within {:g} % up to {:.4g} deg", result.tolerance_percent, up_to);
+  const auto error = [dead_load](const PrbmCheckRow& row) {
+    return dead_load ? row.dead_error_percent() : row.error_percent();
+  };
+  std::vector<std::string> within;
+  for (const PrbmCheckRow& row : result.rows)
+    if (std::abs(error(row)) < result.tolerance_percent) within.push_back(fmt::format("{:.4g}", row.prbm_deg));
+  const PrbmCheckRow& first = result.rows.front();
+  return fmt::format("off by more than {:g} % already at the smallest angle, {:.4g} deg ({:+.3g} %){}",
+                     result.tolerance_percent, first.prbm_deg, error(first),
+                     within.empty() ? std::string("; at every angle")
+                                    : fmt::format("; within it only at {} deg", fmt::join(within, ", ")));
 }
 
 }  // namespace needlefem::prbm

@@ -36,12 +36,18 @@ struct PrbmCheckResult {
   double prbm_lever_m = 0.0, fem_load_lever_m = 0.0;
   double tolerance_percent = 0.0;
   // Largest tabulated PRBM angle up to which |error| stays below the tolerance (follower / dead
-  // load); 0 when even the smallest misses it.
+  // load); 0 when even the smallest misses it (accuracy_text says so in words).
   double accurate_up_to_deg = 0.0, dead_accurate_up_to_deg = 0.0;
   std::size_t nodes = 0, elements = 0, dofs = 0;
   double element_mm = 0.0, neck_element_mm = 0.0;
   double mesh_seconds = 0.0, solve_seconds = 0.0, linear_solve_seconds = 0.0;
 };
+
+// The PRBM's accuracy in words, for the follower (dead_load false) or the dead load: "within 5 %
+// up to 15 deg", or, when even the smallest tabulated angle misses the tolerance, "off by more
+// than 5 % already at the smallest angle, 2 deg (-7.08 %); within it only at 15, 20 deg" (or
+// "; at every angle").
+std::string accuracy_text(const PrbmCheckResult& result, bool dead_load);
 
 // Throws CaseError for a bevel needle or unusable prbm_check keys; PETSc must be initialised.
 PrbmCheckResult run_prbm_check(const Case& input);

@@ -57,7 +57,7 @@ NeedleOutput::NeedleOutput(const Case& input, const TetMesh& mesh, mechanics::Me
 std::vector<output::FieldSpec> NeedleOutput::field_specs() {
   using output::FieldCentre, output::FieldType;
   return {{"contact_pressure", FieldCentre::node, FieldType::scalar, "Pa"},
-          {"contact_slip", FieldCentre::node, FieldType::scalar, "m"}};
+          {"contact_slip", FieldCentre::node, FieldType::scalar, "mm", 1e3}};  // the mesh's unit
 }
 
 std::string NeedleOutput::history_header() {

@@ -6,7 +6,7 @@
 //                contact_area_mm2 (reference area of the cavity in contact),
 //                needle_lateral_force_{xi,eta}_n (the force across the axis in the needle's own
 //                frame, turned with it: what steers a bevel tip; geometry/needle_tip.hpp's ξ, η);
-//   result.h5    node fields contact_pressure (Pa) and contact_slip (m): values at the cavity
+//   result.h5    node fields contact_pressure (Pa) and contact_slip (mm): values at the cavity
 //                nodes, 0 at every other node (result.h5 holds tet cells only, so the cavity
 //                faces carry no cells of their own; ParaView shows them on the tissue surface);
 //   summary.json "needle": largest |axial force|, |torque| and lateral force over the output times

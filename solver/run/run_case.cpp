@@ -106,8 +106,10 @@ std::vector<std::string> reaction_surfaces(const TetMesh& mesh, const mechanics:
 
 std::vector<output::FieldSpec> field_specs() {
   using output::FieldCentre, output::FieldType;
-  std::vector<output::FieldSpec> specs{{"displacement", FieldCentre::node, FieldType::vector, "m"},
-                                       {"velocity", FieldCentre::node, FieldType::vector, "m/s"},
+  // Lengths in the mesh's millimetres (output/result_file.hpp): Warp By Vector at scale 1 shows
+  // the deformation.
+  std::vector<output::FieldSpec> specs{{"displacement", FieldCentre::node, FieldType::vector, "mm", kMmPerM},
+                                       {"velocity", FieldCentre::node, FieldType::vector, "mm/s", kMmPerM},
                                        {"cauchy_stress", FieldCentre::cell, FieldType::symmetric_tensor, "Pa"}};
   for (const auto& q : fields::scalar_quantities()) specs.push_back({q.name, FieldCentre::cell, FieldType::scalar, q.unit});
   for (const auto& q : fields::scalar_quantities())
@@ -173,7 +175,9 @@ nlohmann::json summary_json(const Case& c, const material::Material* material, c
   for (int q = 0; q < kScalarQuantities; ++q)
     if (std::isfinite(record.maxima[q].value)) s["max"][kSummaryNames[q]] = record.maxima[q].to_json();
   s["max_note"] = "maximum over all tissue quadrature points and output times; position_mm is the point's "
-                  "reference (undeformed) position";
+                  "reference (undeformed) position. strain_rate_per_s is the max principal strain rate, the one the "
+                  "strain-rate limit judges; equivalent_strain_rate_per_s, sqrt(2/3 D:D), is not judged (see "
+                  "safety.strain_rate_per_s.quantity)";
   for (std::size_t i = 0; i < record.reactions.size(); ++i) {
     const Point3& r = record.reactions[i];
     s["reactions"][record.surfaces[i]] = {r[0], r[1], r[2]};
@@ -386,6 +390,8 @@ nlohmann::json run_case(const Case& c, const RunOptions& options) {
     if (needle) failed.update(needle->summary());
     failed["status"] = dynamic_cast<const Interrupted*>(&e) ? "interrupted" : "failed";
     failed["error"] = e.what();
+    // A run that stopped early can fail a limit but not pass one: the rest of its history is unknown.
+    if (failed.value("verdict", "") == "pass") failed["verdict"] = "undecided";
     try {
       write_json_atomically(summary_file, failed);
     } catch (const std::exception& summary_error) {  // a full disk: say both, in one line

@@ -14,6 +14,26 @@ namespace {
 constexpr double kMmPerM = 1e3;
 constexpr const char* kCavity = "cavity";
 
+// The limits (case key thresholds.<name>) and what each judges, in the words of summary.json and
+// of the verdict line; values are shown in `unit` (the field's SI value times `scale`).
+struct LimitText {
+  const char* name;
+  int field;  // fields::ScalarQuantity
+  const char* label;
+  const char* quantity;
+  const char* unit;
+  double scale;
+};
+constexpr LimitText kLimitText[] = {
+    {"log_strain", fields::kLogStrain, "max principal log strain",
+     "max principal logarithmic strain, ln of the largest principal stretch", "", 1.0},
+    {"strain_rate_per_s", fields::kStrainRate, "max principal strain rate",
+     "max principal strain rate (1/s): the largest eigenvalue of the rate of deformation D = sym(dF/dt F^-1), the "
+     "stretch rate of the uniaxial tests the limit comes from; max.equivalent_strain_rate_per_s, sqrt(2/3 D:D), "
+     "counts shear too (2/sqrt(3) times larger in simple shear) and is reported, not judged",
+     "1/s", 1.0},
+    {"stress_pa", fields::kVonMises, "von Mises stress", "von Mises (equivalent) Cauchy stress, Pa", "kPa", 1e-3}};
+
 nlohmann::json millimetres(const Point3& x) { return {x[0] * kMmPerM, x[1] * kMmPerM, x[2] * kMmPerM}; }
 
 // Per point: within `distance` of a node of the cavity surface (the needle's imprint).
@@ -63,16 +83,15 @@ nlohmann::json MaximumOverTime::to_json(const char* position_name) const {
 }
 
 SafetyReport::SafetyReport(const Case& c, const TetMesh& mesh, const fields::TissueFieldEvaluator& evaluator)
-    : limits_{{"log_strain", fields::kLogStrain, c.real("thresholds.log_strain")},
-              {"strain_rate_per_s", fields::kStrainRate, c.real("thresholds.strain_rate_per_s")},
-              {"stress_pa", fields::kVonMises, c.real("thresholds.stress_pa")}},
-      radius_mm_(c.real("thresholds.critical_distance_mm")),
+    : radius_mm_(c.real("thresholds.critical_distance_mm")),
       percentile_(c.real("thresholds.percentile")),
       region_mm_(c.real("thresholds.region_mm")),
       positions_(evaluator.point_positions()),
       volumes_(evaluator.point_volumes()),
-      now_(limits_.size()),
-      over_time_(limits_.size()) {
+      now_(std::size(kLimitText)),
+      over_time_(std::size(kLimitText)) {
+  for (const LimitText& text : kLimitText)
+    limits_.push_back({text.name, text.field, c.real(std::string("thresholds.") + text.name)});
   const double radius = radius_mm_ / kMmPerM;
   ball_ = std::make_unique<fields::BallAverager>(positions_, volumes_, radius);
   half_ball_ = std::make_unique<fields::BallAverager>(positions_, volumes_, radius / 2);
@@ -162,9 +181,36 @@ nlohmann::json SafetyReport::summary(const std::array<MaximumOverTime, fields::k
         {"volume_above_limit_mm3", max.volume_above.to_json("centroid_mm")},
         {"region_fraction_above_limit", {{"value", max.region_fraction.value}, {"time_s", max.region_fraction.time_s}}},
         {"percentile", {{"value", max.percentile.value}, {"time_s", max.percentile.time_s}}},
+        {"quantity", kLimitText[i].quantity},
         {"verdict", max.critical_distance.value <= limit.limit ? "pass" : "fail"}};
   }
-  return {{"thresholds", thresholds}, {"safety", safety}};
+  nlohmann::json out = {{"thresholds", thresholds}, {"safety", safety}};
+  bool decided = true, fails = false;
+  for (const Limit& limit : limits_) {
+    decided = decided && safety.contains(limit.name);
+    fails = fails || (safety.contains(limit.name) && safety[limit.name]["verdict"] == "fail");
+  }
+  if (fails || decided) out["verdict"] = fails ? "fail" : "pass";
+  return out;
+}
+
+std::string verdict_line(const nlohmann::json& summary) {
+  if (!summary.contains("verdict")) return "";
+  const nlohmann::json& safety = summary["safety"];
+  std::string judged;
+  for (const LimitText& text : kLimitText) {
+    if (!safety.contains(text.name)) continue;
+    const nlohmann::json& entry = safety[text.name];
+    const double value = entry["critical_distance"]["value"].get<double>() * text.scale;
+    const double limit = entry["limit"].get<double>() * text.scale;
+    const bool passes = entry["verdict"] == "pass";
+    const std::string unit = *text.unit ? std::string(" ") + text.unit : "";
+    judged += fmt::format("{}{} {:.3g}{} {} {:.3g}{}{}", judged.empty() ? "" : ", ", text.label, value, unit,
+                          passes ? "<=" : ">", limit, unit, passes ? "" : " FAILS");
+  }
+  return fmt::format("verdict: {} (critical-distance values: averages over a {:g} mm ball): {}",
+                     summary["verdict"].get<std::string>(), safety["settings"]["critical_distance_mm"].get<double>(),
+                     judged);
 }
 
 }  // namespace needlefem::run

@@ -11,11 +11,18 @@
 //                                    (tissue within thresholds.region_mm of the cavity surface),
 //     percentile                     the thresholds.percentile-th percentile over that region,
 // each the largest over the output times, with when (and where). The verdict of each limit is
-// the critical-distance value's: "pass" when it is at most the limit. `needlefem converge` gives
-// the same metrics their discretisation error band.
+// the critical-distance value's: "pass" when it is at most the limit; the run's verdict is "fail"
+// when any limit fails, else "pass". `needlefem converge` gives the same metrics their
+// discretisation error band.
+//   The strain rate judged is the max principal strain rate (largest eigenvalue of the rate of
+//   deformation D): the limit comes from uniaxial stretching tests, where it is the stretch rate,
+//   as the strain limit is on the max principal log strain. The equivalent rate sqrt(2/3 D:D) is
+//   reported beside it (summary "max", history.csv) and not judged: equal in uniaxial isochoric
+//   stretching, 2/sqrt(3) times larger in simple shear, it counts shear the tests did not apply.
 //   history.csv   per output time: critical-distance value and position, volume above, region
 //                 fraction and percentile of each limited quantity;
-//   summary.json  "thresholds" (point maxima, as before) and "safety" (all of the above).
+//   summary.json  "verdict" (the run's), "thresholds" (point maxima, as before) and "safety" (all
+//                 of the above, each limit naming its quantity).
 #pragma once
 
 #include <array>
@@ -54,7 +61,8 @@ class SafetyReport {
   void add_time(double t, const fields::TissueFields& f);
   std::string history_header() const;  // starts with a comma
   std::string history_cells() const;   // of the last add_time(), starts with a comma
-  // "thresholds" and "safety" of summary.json, given the point maxima over time.
+  // "verdict", "thresholds" and "safety" of summary.json, given the point maxima over time;
+  // "verdict" only once every limit has a critical-distance value.
   nlohmann::json summary(const std::array<MaximumOverTime, fields::kScalarQuantities>& point_maxima) const;
 
  private:
@@ -84,5 +92,12 @@ class SafetyReport {
   std::vector<Now> now_;
   std::vector<OverTime> over_time_;
 };
+
+// The run's verdict in one line, from a summary.json with "verdict" and "safety": e.g.
+// "verdict: fail (critical-distance values: averages over a 0.25 mm ball): max principal log
+// strain 0.252 > 0.19 FAILS, max principal strain rate 1.48 1/s <= 10 1/s, von Mises stress
+// 3.1 kPa <= 120 kPa".
+// Empty when the summary has no verdict.
+std::string verdict_line(const nlohmann::json& summary);
 
 }  // namespace needlefem::run

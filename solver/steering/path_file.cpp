@@ -79,10 +79,10 @@ void write_steering_path(const std::filesystem::path& file, const std::vector<Pa
   PathFileWriter out(file);
   out.root_text("format", "needlefem-steering-path");
   out.root_text("case", resolved_case_toml);
-  out.root_real("tip_path_clearance_m", outcome.tip_path_clearance_m);
-  out.root_real("needle_clearance_m", outcome.needle_clearance_m);
-  out.root_real("miss_distance_m", outcome.miss_distance_m);
-  out.root_real("closest_approach_m", outcome.closest_approach_m);
+  out.root_real("obstacle_clearance_tip_path_m", outcome.tip_path_clearance_m);
+  out.root_real("obstacle_clearance_needle_m", outcome.needle_clearance_m);
+  out.root_real("target_miss_distance_m", outcome.miss_distance_m);
+  out.root_real("target_closest_approach_m", outcome.target_closest_approach_m);
 
   out.dataset("time_s", column(path, [](const PathSample& s) { return s.time_s; }), 0, "s");
   out.dataset("depth_m", column(path, [](const PathSample& s) { return s.depth_m; }), 0, "m");

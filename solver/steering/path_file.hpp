@@ -13,7 +13,9 @@
 //   /scene/{obstacle_radius_m, needle_radius_m} [1]
 // Every dataset has a string attribute "units". Root attributes: "format" =
 // "needlefem-steering-path", "case" = the resolved case (TOML), and the outcome
-// "tip_path_clearance_m", "needle_clearance_m", "miss_distance_m", "closest_approach_m".
+// "obstacle_clearance_tip_path_m", "obstacle_clearance_needle_m" (to the obstacle's surface),
+// "target_miss_distance_m" (final tip to the target), "target_closest_approach_m" (tip path to the
+// target).
 #pragma once
 
 #include <filesystem>

@@ -159,7 +159,7 @@ SteeringOutcome evaluate_scene(const std::vector<PathSample>& path, const Obstac
   }
   out.tip_path_clearance_m = tip_path - scene.obstacle_radius_m;
   out.needle_clearance_m = needle - scene.obstacle_radius_m - scene.needle_radius_m;
-  out.closest_approach_m = target;
+  out.target_closest_approach_m = target;
   out.miss_distance_m = norm(sub(path.back().tip_m, scene.target_m));
   return out;
 }

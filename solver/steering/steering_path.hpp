@@ -116,7 +116,7 @@ struct SteeringOutcome {
   // needle radius (surface to surface).
   double needle_clearance_m = 0.0;
   double miss_distance_m = 0.0;       // final tip position to the target
-  double closest_approach_m = 0.0;    // tip path polyline to the target
+  double target_closest_approach_m = 0.0;  // tip path polyline to the target (not the obstacle)
   bool tip_stays_in_block = true;
 };
 

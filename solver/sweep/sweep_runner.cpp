@@ -148,8 +148,9 @@ class Progress {
 std::string maxima_text(const nlohmann::json& summary) {
   const auto value = [&](const char* key) { return summary["max"].value(key, nlohmann::json::object()).value("value", 0.0); };
   if (!summary.contains("max")) return "";
-  return fmt::format(" (max log strain {:.4g}, strain rate {:.4g} 1/s, von Mises {:.4g} Pa)", value("log_strain"),
-                     value("strain_rate_per_s"), value("von_mises_pa"));
+  return fmt::format(": verdict {} (point maxima: log strain {:.4g}, strain rate {:.4g} 1/s, von Mises {:.4g} Pa)",
+                     summary.value("verdict", "none"), value("log_strain"), value("strain_rate_per_s"),
+                     value("von_mises_pa"));
 }
 
 // A point's expected run time, up to a common factor, to start the longest runs first: the

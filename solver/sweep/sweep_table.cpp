@@ -137,14 +137,17 @@ std::deque<Column> table_columns(const SweepPlan& plan, const fs::path& out_dir)
       for (const auto& r : records) c.number.push_back(number_at(r.summary, pointer));
     }
   }
-  for (const auto& limit : kPaperLimits) {
-    Column& c = add(fmt::format("verdict_{}", limit.name), Kind::flag);
-    const nlohmann::json::json_pointer pointer(fmt::format("/safety/{}/verdict", limit.name));
+  const auto add_verdict = [&](const std::string& column, const std::string& pointer_text) {
+    Column& c = add(column, Kind::flag);
+    const nlohmann::json::json_pointer pointer(pointer_text);
     for (const auto& r : records) {
       const bool has = r.status == "completed" && r.summary.contains(pointer) && r.summary.at(pointer).is_string();
       c.flag.push_back(!has ? kUnknown : static_cast<std::int8_t>(r.summary.at(pointer).get<std::string>() == "pass"));
     }
-  }
+  };
+  for (const auto& limit : kPaperLimits)
+    add_verdict(fmt::format("verdict_{}", limit.name), fmt::format("/safety/{}/verdict", limit.name));
+  add_verdict("verdict", "/verdict");  // the run's: fail when any limit fails
 
   // Threshold columns: the union of the names the completed runs report, in first-seen order.
   std::vector<std::vector<std::pair<std::string, std::int8_t>>> results;

@@ -9,8 +9,9 @@
 // (max.log_strain, max.strain_rate_per_s, max.von_mises_pa, max.principal_stress_pa), the
 // needle's largest axial force, torque and lateral force (summary "needle", when the run reports it),
 // the mesh-objective metrics of each limit (summary "safety", run/safety_report.hpp):
-// critical_distance_<limit>, volume_above_<limit>_mm3, percentile_<limit>, and verdict_<limit>
-// (1 pass, 0 fail, empty/-1 unknown: the critical-distance value against the limit),
+// critical_distance_<limit>, volume_above_<limit>_mm3, percentile_<limit>, verdict_<limit>
+// (1 pass, 0 fail, empty/-1 unknown: the critical-distance value against the limit) and verdict
+// (the run's summary "verdict": 0 when any limit fails, 1 when all pass),
 // pass_<threshold> (the point maxima, as paper 001 judged; 1 pass, 0 fail, empty/-1 unknown) and
 // safe (all those pass), dofs,
 // wall_s (the run's own wall time), time_reached_s, rules (violated geometry rules) and error.
@@ -21,7 +22,7 @@
 // von Mises stress 120 kPa.
 //
 // HDF5 layout of sweep.h5: one 1-D dataset per column at the root, named as the CSV column
-// (float64 with NaN for empty, int8 for verdict_*, pass_* and safe with -1 for unknown, UTF-8 strings);
+// (float64 with NaN for empty, int8 for verdict, verdict_*, pass_* and safe with -1 for unknown, UTF-8 strings);
 // root attributes "columns" (the column order), "sweep_file", "base_case" and
 // "format" = "needlefem-sweep-table".
 #pragma once

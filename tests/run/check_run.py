@@ -7,18 +7,22 @@
              Cauchy sigma = 2 (l^2 - 1/l) (W1 + W2 / l) (Holzapfel 2000 §7.2), which is also the
              von Mises and the max principal stress; max principal ln V = ln l; strain rate
              D_xx = d ln l / dt = 0.2 / l (equivalent rate the same for isochoric stretching);
-             reaction on x_max = nominal stress sigma / l times the undeformed area.
+             reaction on x_max = nominal stress sigma / l times the undeformed area; the stored
+             displacement (mm) = ((l-1) X, (l^-1/2 - 1) Y, (l^-1/2 - 1) Z); every limit
+             passes, and summary "verdict" and the last line printed say so with the values.
   brain-tip  coarse paper-001 cube, needle in frictional contact, default tolerances: summary keys
              (needle, thresholds, contact), signs at every output time (the needle pushes the
              tissue along +z and is pushed back: axial force on the needle < 0; friction resists
              the +180 deg/s rotation: torque on the needle < 0), fields in the HDF5 file
-             including contact pressure (>= 0) and slip on the cavity nodes only.
+             including contact pressure (>= 0) and slip on the cavity nodes only; the verdict
+             ("fail" when any critical-distance value exceeds its limit) in summary and last line.
   balance    the same scene with tight IDA tolerances: at every output time the force on the
              needle equals the sum of the reactions on the fixed faces (the tissue's equilibrium;
              the entry face is free) within 1e-6 relative. The error is the Newton residual summed
              over the free nodes, so it needs the tight tolerances.
   failure    an inverting block: non-zero exit, exactly one error line, summary status
-             "failed", and the output times completed before the failure readable.
+             "failed" with a verdict that is not "pass", and the output times completed before
+             the failure readable.
   inverted   a block whose applied field is inverted after a 1 us ramp: stops at the next output
              time with one line naming block.applied_gradient (IDA once ground on with steps of
              1e-21 s for half a minute, then reported IDA_CONV_FAIL).
@@ -100,6 +104,31 @@ def check_common(out, summary, times):
     check(len(history(out)) == times, f"history.csv has {times} rows")
 
 
+# The verdict line's words per limit (run/safety_report.cpp) and the factor to its unit.
+VERDICT_WORDS = {"log_strain": ("max principal log strain", 1.0),
+                 "strain_rate_per_s": ("max principal strain rate", 1.0), "stress_pa": ("von Mises stress", 1e-3)}
+
+
+def check_verdict(stdout, summary):
+    """summary "verdict" is "fail" when any limit's critical-distance value exceeds it, else "pass";
+    the last line printed states it with each judged value against its limit."""
+    safety = summary["safety"]
+    fails = [name for name in THRESHOLDS if safety[name]["critical_distance"]["value"] > safety[name]["limit"]]
+    check(summary["verdict"] == ("fail" if fails else "pass"),
+          f"summary verdict {summary['verdict']} (failing: {fails})")
+    last = stdout.rstrip().splitlines()[-1]
+    check(last.startswith(f"verdict: {summary['verdict']} (critical-distance values: averages over a 0.25 mm ball): "),
+          f"last line states the verdict: {last}")
+    for name, (words, scale) in VERDICT_WORDS.items():
+        value, limit = safety[name]["critical_distance"]["value"] * scale, safety[name]["limit"] * scale
+        said = f"{words} {value:.3g}"
+        check(said in last and (f"{limit:.3g}" in last.split(said, 1)[1].split(",")[0]),
+              f"the last line gives the {words} {value:.3g} against {limit:.3g}")
+    check("max principal strain rate" in safety["strain_rate_per_s"]["quantity"]
+          and "equivalent_strain_rate_per_s" in safety["strain_rate_per_s"]["quantity"],
+          "safety.strain_rate_per_s names the judged measure and the other one")
+
+
 def check_blas_kernel(kernel):
     """OpenBLAS falls back to its SSE3 "Prescott" kernels on a CPU model it does not know, 5x slower
     in single-precision GEMM on an AVX-512 Xeon; needlefem then restarts itself with the kernels
@@ -142,6 +171,37 @@ def block(args):
     close(float(last["max_equivalent_strain_rate"]), RATE / l_end, 1e-3, "equivalent strain rate at t = 1 s")
     close(summary["reactions"]["x_max"][0], sigma / l_end * AREA, 1e-3, "reaction on x_max = nominal stress x area")
     close(-summary["reactions"]["x_min"][0], sigma / l_end * AREA, 1e-3, "reaction on x_min balances x_max")
+    check_block_displacement(out, l_end)
+    # ln 1.2 = 0.182 < 0.19, 0.2 1/s < 10 1/s and sigma < 120 kPa everywhere in the homogeneous block.
+    check_verdict(result.stdout, summary)
+    check(summary["verdict"] == "pass", "the block passes every limit")
+
+
+def attribute_text(dataset, name):
+    value = dataset.attrs[name]
+    return value.decode() if isinstance(value, bytes) else str(value)
+
+
+def check_block_displacement(out, stretch):
+    """The stored displacement and velocity are in the mesh's millimetres (ParaView's Warp By Vector
+    at scale 1): u = ((l - 1) X, (l^-1/2 - 1) Y, (l^-1/2 - 1) Z) from the rollers on the min faces,
+    and at the ramp's end v_x = 0.2 X mm/s (incompressible: ~1e-4 off, as the strain)."""
+    with h5py.File(out / "result.h5", "r") as h5:
+        last = int(h5["/series/time_count"][0]) - 1
+        x = h5["/mesh/coordinates_mm"][()]
+        x = x - x.min(axis=0)
+        u, v = h5["/series/node/displacement"][last], h5["/series/node/velocity"][last]
+        units = tuple(attribute_text(h5[f"/series/node/{name}"], "unit") for name in ("displacement", "velocity"))
+    check(units == ("mm", "mm/s"), f"displacement and velocity units {units}")
+    lateral = stretch ** -0.5 - 1
+    expected = x * [stretch - 1, lateral, lateral]
+    error = abs(u - expected).max()
+    check(error <= 1e-3 * (stretch - 1), f"displacement in mm = closed form within {error:.2e} mm "
+          f"(largest {abs(u).max():.4f} mm, (l - 1) x 1 mm = {stretch - 1:.4f} mm)")
+    error = abs(v[:, 0] - RATE * x[:, 0]).max()
+    check(error <= 1e-3 * RATE, f"velocity v_x in mm/s = 0.2 X within {error:.2e} mm/s")
+    xdmf = (out / "result.xdmf").read_text()
+    check('<Information Name="unit:displacement" Value="mm"/>' in xdmf, "result.xdmf states the displacement's unit")
 
 
 def vector(row, prefix, suffix):
@@ -200,6 +260,7 @@ def brain_tip(args):
         check(entry["critical_distance_double_radius"]["value"] <= entry["critical_distance_half_radius"]["value"],
               f"safety.{name}: a larger ball averages lower near the needle "
               f"({entry['critical_distance_double_radius']['value']:.4g} <= {entry['critical_distance_half_radius']['value']:.4g})")
+    check_verdict(result.stdout, summary)
     deflection = needle["deflection_check"]
     check(deflection["needle_dofs"] > 0 and deflection["elastic_energy_j"] > 0
           and 0 < deflection["max_deflection_m"] < deflection["smallest_elastic_slip_m"],
@@ -218,7 +279,8 @@ def brain_tip(args):
         pressure, slip = h5["/series/node/contact_pressure"][2], h5["/series/node/contact_slip"][2]
         off_cavity = [i for i in range(nodes) if i not in cavity_nodes]
         check(pressure.min() >= 0 and pressure.max() > 0, f"contact pressure in [0, {pressure.max():.3g}] Pa")
-        check(slip.max() > 0, f"the tissue slips on the needle: max slip {slip.max() * 1e3:.3g} mm")
+        check(attribute_text(h5["/series/node/contact_slip"], "unit") == "mm" and slip.max() > 0,
+              f"the tissue slips on the needle: max slip {slip.max():.3g} mm")
         check(not pressure[off_cavity].any() and not slip[off_cavity].any(), "contact fields are 0 off the cavity")
 
 
@@ -261,6 +323,8 @@ def failure(args):
           f"exactly one error line, last on stderr: {errors}")
     summary = json.load(open(out / "summary.json"))
     check(summary["status"] == "failed" and summary["error"] in errors[0], "summary.json: status failed, the error")
+    check(summary.get("verdict") in ("fail", "undecided"),
+          f"a run that stopped cannot pass: verdict {summary.get('verdict')}")
     completed = summary["output_times"]
     check(completed >= 1, f"{completed} output times completed before the failure")
     with h5py.File(out / "result.h5", "r") as h5:

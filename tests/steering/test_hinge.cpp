@@ -105,6 +105,15 @@ TEST(MagnetCommand, PrintsTheWorkedExampleAsJson) {
   EXPECT_NEAR(out["results"][0]["force_n"].get<double>(), gap_force_n(0.0391302205, paper_gap_area_m2), 1e-5);
 }
 
+TEST(MagnetCommand, RunsTheWorkedExampleWithoutArguments) {
+  const auto out = run_magnet_command("");
+  ASSERT_EQ(out["results"].size(), 2u);
+  EXPECT_EQ(out["results"][0]["turning_angle_deg"].get<double>(), 15.0);
+  EXPECT_EQ(out["results"][1]["turning_angle_deg"].get<double>(), 30.0);
+  EXPECT_NEAR(out["results"][0]["flux_density_t"].get<double>(), 0.0391302205, 1e-6);
+  EXPECT_NEAR(out["results"][1]["flux_density_t"].get<double>(), 0.0553384885, 1e-6);
+}
+
 TEST(MagnetCommand, DistanceGivesTheAngleBack) {
   const auto by_angle = run_magnet_command("--turning-angle-deg 20 --tissue-spring-constant-pa 1000");
   const double distance_mm = by_angle["results"][0]["distance_mm"];

@@ -105,7 +105,7 @@ TEST(SteeringScene, StraightPathThroughTheObstacleCentre) {
   const SteeringOutcome outcome = evaluate_scene(path, scene);
   EXPECT_NEAR(outcome.tip_path_clearance_m, -0.004, 1e-15);
   EXPECT_NEAR(outcome.needle_clearance_m, -0.0045, 1e-15);
-  EXPECT_NEAR(outcome.closest_approach_m, 0.003, 1e-15);
+  EXPECT_NEAR(outcome.target_closest_approach_m, 0.003, 1e-15);
   EXPECT_NEAR(outcome.miss_distance_m, std::hypot(0.003, 0.002), 1e-15);
   EXPECT_TRUE(outcome.tip_stays_in_block);
 }

@@ -8,12 +8,14 @@
            nothing. Every row of sweep.csv and sweep.h5 appears exactly once and matches its
            run: max log strain = ln 1.2, max strain rate in [0.2/(1.2 ramp), 0.2/ramp] (closed
            forms of the uniaxial block, see tiny.toml; the ramps differ 66-fold), the strain-rate
-           limit failed exactly by the 15 ms ramp, pass_* = (value <= limit).
+           limit failed exactly by the 15 ms ramp (pass_*, verdict_strain_rate_per_s and the
+           overall verdict), pass_* = (value <= limit).
   bad      runs tests/sweep/bad_points.toml: impossible points listed on the terminal with their
            rule and in the table as "impossible" with the rule; the run that fails recorded as
            "failed" with its error; the sweep exits 0.
   figures  runs postprocess/sweep_figures.py all and postprocess/render_max_strain.py (pvbatch
-           under xvfb-run) on the resume test's sweep: every PNG exists and is not blank.
+           under xvfb-run) on the resume test's sweep: every PNG exists and is not blank; the
+           safety map marks each point with its verdict and failing limit.
 """
 import argparse
 import csv
@@ -112,6 +114,9 @@ def check_table(out, expected_points):
               f"{r['point']}: critical-distance log strain {cd:.9f} = point max {strain:.9f}")
         check(float(r["volume_above_log_strain_mm3"]) == 0.0 and int(r["verdict_log_strain"]) == 1,
               f"{r['point']}: no volume above the strain limit, verdict pass")
+        # The critical-distance strain rate is the homogeneous rate, above 10 1/s only for the 15 ms ramp.
+        check(int(r["verdict_strain_rate_per_s"]) == int(ramp > 0.1) and int(r["verdict"]) == int(ramp > 0.1),
+              f"{r['point']}: verdict {r['verdict']} (strain-rate verdict {r['verdict_strain_rate_per_s']})")
         above = float(r["volume_above_strain_rate_per_s_mm3"])
         check(abs(above - (1.0 if ramp < 0.1 else 0.0)) <= 1e-9,
               f"{r['point']}: volume above the strain-rate limit {above:.9g} mm^3 (all of the block or none)")
@@ -211,6 +216,16 @@ def figures(args):
     check(result.returncode == 0, "sweep_figures.py all exits 0")
     for name in ("fig4_stress_strain", "fig5_fillet", "fig6_strain_rate", "safety_map", "safety_steering", "history"):
         check(png_ok(out / f"{name}.png"), f"{name}.png written and not blank")
+    # The safety map marks each design by its verdict, labelled with the limits that fail: the
+    # 15 ms ramp's strain rate (0.2/0.015 s = 13 1/s) fails, the 1 s ramp passes.
+    sys.path.insert(0, str(pathlib.Path(args.figures).parent))
+    import sweep_figures
+    table = sweep_figures.Sweep(sweep_dir)
+    for i in range(table.rows):
+        ramp = table.table["loading.ramp_s"][i]
+        expected = ("pass", "") if ramp > 0.1 else ("fail", "strain_rate_per_s")
+        mark = sweep_figures.map_mark(table, i)
+        check(mark == expected, f"safety map marks {table.table['point'][i]} {mark} (expected {expected})")
     point = read_csv(sweep_dir)[0]["point"]
     png = out / "max_log_strain.png"
     # A 24-bit screen for GLX; two retries a few seconds apart, because pvbatch now and then aborts
@@ -254,6 +269,12 @@ def steering(args):
             check(abs(cd - summary["safety"][name]["critical_distance"]["value"]) <= 1e-8 * cd,
                   f"{r['point']}: critical_distance_{name} {cd:.6g} = the summary's (9 digits in the CSV)")
             check(int(r[f"verdict_{name}"]) == int(cd <= LIMITS[name]), f"{r['point']}: verdict_{name}")
+        every = all(summary["safety"][name]["critical_distance"]["value"] <= LIMITS[name] for name in LIMITS)
+        line = next((l for l in process.stdout.splitlines() if f"completed {r['point']} in " in l), "")
+        check(f": verdict {summary['verdict']} (point maxima:" in line,
+              f"{r['point']}: the sweep's progress line gives the verdict {summary['verdict']}: {line}")
+        check(int(r["verdict"]) == int(every) and summary["verdict"] == ("pass" if every else "fail"),
+              f"{r['point']}: verdict {r['verdict']} = every limit passes ({every})")
     png = out / "safety_steering.png"
     result = subprocess.run([sys.executable, args.figures, "safety-steering", str(out), "--png", str(png)],
                             capture_output=True, text=True)
