@@ -273,9 +273,16 @@ std::vector<KeySpec> build_schema() {
 
       // --- needle-tissue contact (physics/contact) ----------------------------------------------
       real("contact.friction_coefficient", 0.5, 0.0, 10.0, "Coulomb friction coefficient mu", false),
-      real("contact.penalty_factor", 100.0, 0.0, 1e8,
+      real("contact.penalty_factor", 30.0, 0.0, 1e8,
            "c in the normal penalty eps_N = c mu0 / h_face (mu0: the tissue's instantaneous shear modulus, "
-           "h_face: size of each contact face); the interpenetration is ~ pressure h_face / (c mu0)"),
+           "h_face: size of each contact face). With the augmented enforcement it only regularises Newton: the "
+           "contact loads do not depend on it (docs/accuracy.md), and a stiffer one makes the steps "
+           "harder; with the plain penalty the interpenetration is ~ pressure h_face / (c mu0)"),
+      choice("contact.normal_enforcement", "augmented", {"augmented", "penalty"},
+             "augmented: the penalty acts on the penetration plus a multiplier offset that each accepted step "
+             "sets from the last penetration and the multiplier's rate (an augmented Lagrangian whose Uzawa "
+             "update is spread over the steps), which closes the penetration; penalty: the plain penalty, whose "
+             "interpenetration error moves the contact loads with c (physics/contact/penalty_contact.hpp)"),
       real("contact.penalty_smoothing", 0.25, 0.0, 100.0,
            "s: the normal penalty is smoothed (C1, quadratic) over the first s h_face / c of penetration, "
            "i.e. below the pressure s mu0 / 2; 0 gives the plain kink (physics/contact/penalty_contact.hpp)",

@@ -1,6 +1,7 @@
 // Equations: penalty_contact.hpp.
 #include "physics/contact/penalty_contact.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -13,6 +14,9 @@ namespace needlefem::contact {
 namespace {
 
 constexpr double kMetresPerMm = 1e-3;
+// Augmented enforcement: at most this many multiplier updates over the motion (see
+// ContactParameters::multiplier_update_interval).
+constexpr double kMultiplierUpdatesPerMotion = 1000.0;
 
 // Dunavant (1985) 6-point, degree-4 rule on the reference triangle (area 1/2): (L1, L2, weight).
 struct TrianglePoint {
@@ -194,6 +198,9 @@ ContactParameters contact_parameters_from_case(const Case& input, double referen
   p.friction_tangent =
       input.text("contact.friction_tangent") == "consistent" ? FrictionTangent::consistent : FrictionTangent::secant;
   p.friction_law = input.text("contact.friction_law") == "velocity" ? FrictionLaw::velocity : FrictionLaw::return_map;
+  p.normal_enforcement = input.text("contact.normal_enforcement") == "penalty" ? NormalEnforcement::penalty
+                                                                                : NormalEnforcement::augmented;
+  p.multiplier_update_interval = input.real("motion.duration_s") / kMultiplierUpdatesPerMotion;
   return p;
 }
 
@@ -258,10 +265,10 @@ FaceTerms PenaltyContact::face_terms(std::size_t face, const double* x, const do
     // closed: with the plain penalty (s = 0) their stiffness then enters the Newton matrix
     // evaluated at the start state, without which IDA's modified Newton never sees the contact it
     // is about to create.
-    const double gap = p.gap - point.gap_offset;
-    if (gap > 0.0) continue;
+    const double depth = effective_depth(point, p.gap - point.gap_offset, t);
+    if (depth < 0.0) continue;
     const Point3& normal = p.normal;
-    const NormalPressure normal_law = normal_pressure(-gap, penalty, faces_[face].smoothing_depth);
+    const NormalPressure normal_law = normal_pressure(depth, penalty, faces_[face].smoothing_depth);
     const double pressure = normal_law.pressure;
     Point3 velocity{};
     for (int a = 0; a < m; ++a)
@@ -318,8 +325,21 @@ Point3 PenaltyContact::point_position(const FacePoint& point, const double* x) c
   return position;
 }
 
+double PenaltyContact::effective_depth(const FacePoint& point, double gap, double t) const {
+  if (parameters_.normal_enforcement == NormalEnforcement::penalty) return -gap;
+  double ramp = 1.0;
+  if (ramp_duration_ > 0.0) ramp = std::clamp((t - ramp_start_) / ramp_duration_, 0.0, 1.0);
+  const double offset =
+      point.offset_start + ramp * point.offset_increment + (t - ramp_start_) * point.offset_rate;
+  return std::max(0.0, offset) - gap;
+}
+
 void PenaltyContact::accept_step(double t, const double* y, const double* ydot, const mechanics::DofMap& dofs) {
-  if (parameters_.friction_law != FrictionLaw::return_map) return;
+  const bool anchors = parameters_.friction_law == FrictionLaw::return_map;
+  const double step = t - last_accepted_;
+  const bool augmented = parameters_.normal_enforcement == NormalEnforcement::augmented &&
+                         step >= parameters_.multiplier_update_interval;
+  if (!anchors && !augmented) return;
   std::vector<double> x(3 * nodes_per_face_), v(3 * nodes_per_face_);
   for (std::size_t f = 0; f < faces_.size(); ++f) {
     gather(f, y, ydot, dofs, x.data(), v.data());
@@ -327,8 +347,17 @@ void PenaltyContact::accept_step(double t, const double* y, const double* ydot, 
       const Point3 position = point_position(point, x.data());
       const ObstacleProjection p = obstacle_->project(position, t);
       const double gap = p.gap - point.gap_offset;
+      const double depth = effective_depth(point, gap, t);
+      if (augmented) {
+        const double offset = depth + gap, target = std::max(0.0, depth);  // o(t_n), z_n
+        point.offset_start = offset;
+        point.offset_increment = target - offset;
+        point.offset_rate = step > 0.0 && target > 0.0 ? (target - point.target) / step : 0.0;
+        point.target = target;
+      }
+      if (!anchors) continue;
       Point3 anchor = position;  // out of contact: re-anchor where the point is
-      if (gap <= 0.0) {
+      if (depth >= 0.0) {
         const Point3 slip = tangential_part(p.normal, difference(position, obstacle_->from_body(point.anchor, t)));
         const double size = std::sqrt(dot(slip, slip)), allowed = faces_[f].elastic_slip;
         const double kept = size > allowed ? allowed / size : 1.0;  // a slipping point drags its anchor along
@@ -337,6 +366,10 @@ void PenaltyContact::accept_step(double t, const double* y, const double* ydot, 
       point.anchor = obstacle_->to_body(anchor, t);
     }
   }
+  if (!augmented) return;
+  ramp_start_ = t;
+  ramp_duration_ = step;
+  last_accepted_ = t;
 }
 
 void PenaltyContact::gather(std::size_t face, const double* y, const double* ydot, const mechanics::DofMap& dofs,

@@ -24,6 +24,28 @@
 //   pressure; with the plain kink the stiffness of thousands of such points jumps between 0 and
 //   ε_N from one Newton iterate to the next (measured: hundreds of points changing state per
 //   iteration, IDA_CONV_FAIL with steps cut to 1e-9 s at 2-9 ms on the 0.4 mm brain-tip mesh).
+// Augmented enforcement (contact.normal_enforcement = "augmented", the default of cases): the
+// penalty law above acts on z = d + o instead of d, where o >= 0 is a per-point multiplier offset
+// (λ = ε_N o is the Lagrange multiplier of an augmented Lagrangian, and Uzawa's update
+// λ <- <λ + ε_N d> sets o to <z>; Simo & Laursen 1992, Wriggers 2006 §6.3). Uzawa at every
+// step would need the step solved again; instead each accepted step (at t_n, the previous one at
+// t_{n-1}, h = t_n - t_{n-1}) sets the offset for the next step from the targets z_n = <z(t_n)>:
+//   o(t) = <o(t_n) + min(1, (t - t_n)/h) (z_n - o(t_n)) + (t - t_n) (z_n - z_{n-1})/h>,
+// the last target extrapolated along its last rate, with what the previous extrapolation missed
+// (the penetration d_n = z_n - o(t_n)) ramped in over the first h of the step. Why this form:
+//  * o(t) is a known function of time during the step, so Newton sees only ε_N: the stiffness,
+//    and the robustness, of the plain penalty;
+//  * o is continuous in time (setting o = z_n at once would shift the equilibrium by d at each
+//    step, which IDA's error test reads as an O(1) error and answers by cutting steps);
+//  * where the pressure varies smoothly the penetration left is the extrapolation's error,
+//    ~ h² z̈, instead of p/ε_N; a lagged update without the rate term leaves ~ h ṗ/ε_N, which
+//    changes with every change of the step, and the error test then held the steps of a
+//    frictional scene near 1.5 ms (docs/accuracy.md, "Contact enforcement").
+// Since the pressure is set by z, not by o, a poorly extrapolated offset (at a stick/slip event,
+// at first touch) only opens a gap or a penetration of |o - z| for a step, whose force error is
+// bounded by the plain penalty's. A point whose target is zero separates, and its offset ramps
+// back to zero. The penalty's role is then only to regularise Newton; c = 30-100 give the same
+// loads (tests/contact: Hertz indentation by Uzawa's iteration at c = 10 and 100).
 // Friction (Coulomb coefficient μ), one of two laws (contact.friction_law):
 //
 // return-map (default; Wriggers 2006 §5.2.3, Laursen 2002 §5.3, with the elastic-slip stick
@@ -125,6 +147,7 @@ namespace needlefem::contact {
 
 enum class FrictionTangent { secant, consistent };
 enum class FrictionLaw { return_map, velocity };
+enum class NormalEnforcement { penalty, augmented };
 
 struct ContactParameters {
   double friction_coefficient = 0.5;
@@ -139,6 +162,14 @@ struct ContactParameters {
   double slip_velocity_regularisation = 1e-5; // ε_v, m/s
   FrictionTangent friction_tangent = FrictionTangent::consistent;  // velocity law only
   FrictionLaw friction_law = FrictionLaw::return_map;
+  NormalEnforcement normal_enforcement = NormalEnforcement::penalty;
+  // Augmented: accepted steps closer than this to the last multiplier update leave the offsets'
+  // ramp running (cases: motion.duration_s / 1000). Why: the rate (z_n - z_{n-1})/h of the
+  // targets carries the Newton error of z divided by h; at the tiny steps of a start or a
+  // stick/slip event, extrapolated, it is as large as the error test's tolerance, the test
+  // fails, the step shrinks and the rate grows (measured: IDA_CONV_FAIL with steps of 1e-32 s at
+  // rtol 1e-8 on the brain-tip scene with an update at every step).
+  double multiplier_update_interval = 0.0;  // s
   // Measure each quadrature point's gap from its own gap in the reference configuration at t = 0,
   // g - g(X_q, 0): a surface meshed from the obstacle's shape then starts exactly in touch instead
   // of with the ± interference of its faceted curved faces (micrometres on a 0.4 mm mesh of a
@@ -211,6 +242,7 @@ class PenaltyContact final : public mechanics::SurfaceLoad {
   void add_jacobian(double t, const double* y, const double* ydot, double cj, const mechanics::DofMap& dofs,
                     Mat jacobian, mechanics::NewtonMatrix form) const override;
   // Return map: moves every point's anchor to what the accepted state (t, y) leaves it.
+  // Augmented enforcement: starts each point's next multiplier ramp from the accepted penetration.
   void accept_step(double t, const double* y, const double* ydot, const mechanics::DofMap& dofs) override;
 
  private:
@@ -219,6 +251,10 @@ class PenaltyContact final : public mechanics::SurfaceLoad {
     double area_weight = 0.0;  // quadrature weight x reference area Jacobian
     double gap_offset = 0.0;   // g(X_q, 0) with reference_gap_offset, else 0
     Point3 anchor{};           // return map: ξ in the obstacle's body frame (X_q at t = 0 to start)
+    double offset_start = 0.0;      // augmented: o(t_n), m
+    double offset_increment = 0.0;  // augmented: z_n - o(t_n), ramped in over the step, m
+    double offset_rate = 0.0;       // augmented: (z_n - z_{n-1}) / h, m/s
+    double target = 0.0;            // augmented: z_n, m
   };
   struct Face {
     double penalty = 0.0;
@@ -229,6 +265,8 @@ class PenaltyContact final : public mechanics::SurfaceLoad {
   void gather(std::size_t face, const double* y, const double* ydot, const mechanics::DofMap& dofs, double* x,
               double* v) const;
   Point3 point_position(const FacePoint& point, const double* x) const;
+  // Penetration the normal law sees at time t: -g (+ the multiplier offset o(t), augmented).
+  double effective_depth(const FacePoint& point, double gap, double t) const;
 
   const TetMesh& mesh_;
   std::shared_ptr<const RigidObstacle> obstacle_;
@@ -236,6 +274,7 @@ class PenaltyContact final : public mechanics::SurfaceLoad {
   int nodes_per_face_ = 6;
   std::vector<int> face_nodes_;
   std::vector<Face> faces_;
+  double ramp_start_ = 0.0, ramp_duration_ = 0.0, last_accepted_ = 0.0;  // augmented: the offsets' ramp, s
 };
 
 }  // namespace needlefem::contact
