@@ -16,7 +16,7 @@ import argparse
 import os
 import sys
 
-from paraview.simple import (ColorBy, CreateView, GetColorTransferFunction, GetScalarBar, Show, Slice,
+from paraview.simple import (Clip, ColorBy, CreateView, GetColorTransferFunction, GetScalarBar, Show, Slice,
                              SaveScreenshot, Text, Threshold, Xdmf3ReaderS)
 
 NORMALS = {"x": [1.0, 0.0, 0.0], "y": [0.0, 1.0, 0.0], "z": [0.0, 0.0, 1.0]}
@@ -25,14 +25,19 @@ CAMERAS = {"x": ([1.0, 0.0, 0.0], [0.0, 1.0, 0.0]), "y": ([0.0, 1.0, 0.0], [1.0,
            "z": ([0.0, 0.0, 1.0], [0.0, 1.0, 0.0])}
 
 
-def region_names(xdmf):
-    """Region index -> name from the XDMF's Information "region_names" ("0=tissue_core, ...")."""
+def information(xdmf, name):
+    """The Value of the XDMF's Information element `name`, or None."""
     with open(xdmf) as f:
         for line in f:
-            if 'Name="region_names"' in line:
-                value = line.split('Value="', 1)[1].split('"', 1)[0]
-                return {int(k): v for k, v in (item.strip().split("=", 1) for item in value.split(","))}
-    return {}
+            if f'Name="{name}"' in line:
+                return line.split('Value="', 1)[1].split('"', 1)[0]
+    return None
+
+
+def region_names(xdmf):
+    """Region index -> name from the XDMF's Information "region_names" ("0=tissue_core, ...")."""
+    value = information(xdmf, "region_names")
+    return {int(k): v for k, v in (item.strip().split("=", 1) for item in value.split(","))} if value else {}
 
 
 def region_filter(source, low, high):
@@ -90,15 +95,7 @@ def main():
     cut.SliceType.Origin = origin
     cut.SliceType.Normal = NORMALS[args.normal]
     cut.UpdatePipeline(times[-1])
-    shown = Show(cut, view)
-    ColorBy(shown, ("CELLS", args.field))
     field_range = cut.CellData[args.field].GetRange()
-    lut = GetColorTransferFunction(args.field)
-    lut.ApplyPreset("Viridis (matplotlib)", True)
-    lut.RescaleTransferFunction(0.0, args.max if args.max is not None else max(field_range[1], 1e-12))
-    shown.SetScalarBarVisibility(view, True)
-    bar = GetScalarBar(lut, view)
-    bar.TitleColor = bar.LabelColor = [0.0, 0.0, 0.0]
 
     needle_length = 0.0
     if needle:
@@ -107,34 +104,89 @@ def main():
         needle_cut.SliceType.Origin = origin
         needle_cut.SliceType.Normal = NORMALS[args.normal]
         needle_cut.UpdatePipeline(times[-1])
-        needle_shown = Show(needle_cut, view)
-        ColorBy(needle_shown, None)
-        needle_shown.DiffuseColor = [0.55, 0.55, 0.55]
-        needle_shown.AmbientColor = [0.55, 0.55, 0.55]
         bounds = needle_cut.GetDataInformation().GetBounds()
         if bounds[0] <= bounds[1]:
             needle_length = bounds[5]
 
-    bounds = cut.GetDataInformation().GetBounds()
-    centre = [(bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2, (bounds[4] + bounds[5]) / 2]
-    # Parallel scale = half the view height: the whole cut fits the height; a window fills the width.
-    scale = 1.05 * max(bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4]) / 2
-    window = args.window_mm or (3.0 * needle_length if needle_length > 0 else None)
-    if window:
-        centre = [origin[0] if args.normal == "x" else 0.0, origin[1] if args.normal == "y" else 0.0,
-                  origin[2] if args.normal == "z" else needle_length / 2]
-        scale = window / 2 * args.size[1] / args.size[0]
+    # Frame the picture on the tissue: the field fills the lower left of the image, clipped to the
+    # cut (no blank beside the entry face), with a band above for the title and one on the right
+    # for the colour bar.
     direction, up = CAMERAS[args.normal]
+    right = [up[1] * direction[2] - up[2] * direction[1], up[2] * direction[0] - up[0] * direction[2],
+             up[0] * direction[1] - up[1] * direction[0]]  # up x (towards the viewer)
+    h_axis, v_axis = right.index(max(right, key=abs)), up.index(1.0)
+    flip = right[h_axis]  # +1: the axis grows to the right
+    bounds = cut.GetDataInformation().GetBounds()
+    aspect = args.size[1] / args.size[0]
+    field_width, field_height = 0.80, 0.90  # fractions of the image the field fills
+    h_extent, v_extent = bounds[2 * h_axis + 1] - bounds[2 * h_axis], bounds[2 * v_axis + 1] - bounds[2 * v_axis]
+    window = args.window_mm or (3.0 * needle_length if needle_length > 0 else h_extent)
+    width = min(window, h_extent)  # world width of the field, then its height at the image's aspect
+    height = width / field_width * aspect * field_height
+    if height > v_extent:
+        height = v_extent
+        width = height / field_height / aspect * field_width
+    view_width, view_height = width / field_width, height / field_height
+
+    def place(axis, length, centre):
+        """The field's interval along an axis: `length` long around `centre`, moved inside the cut."""
+        low = min(max(centre - length / 2, bounds[2 * axis]), bounds[2 * axis + 1] - length)
+        return low, low + length
+
+    h_low, h_high = place(h_axis, width, needle_length / 2 if needle_length > 0 else sum(bounds[2 * h_axis:2 * h_axis + 2]) / 2)
+    v_low, v_high = place(v_axis, height, origin[v_axis] if needle_length > 0 else sum(bounds[2 * v_axis:2 * v_axis + 2]) / 2)
+    screen_left = min(flip * h_low, flip * h_high)
+    centre = list(origin)
+    centre[h_axis] = flip * (screen_left + view_width / 2)
+    centre[v_axis] = v_low + view_height / 2
+    def crop(source):
+        """The framed part of a cut, shown in its place: the bands around it stay white."""
+        box = Clip(Input=source)
+        box.ClipType = "Box"
+        box.ClipType.UseReferenceBounds = 0
+        box.Exact = 1
+        position = [low - 0.5 for low in bounds[0::2]]
+        length = [high - low + 1.0 for low, high in zip(bounds[0::2], bounds[1::2])]
+        for axis, low, high in ((h_axis, h_low, h_high), (v_axis, v_low, v_high)):
+            position[axis], length[axis] = low, high - low
+        box.ClipType.Position = position
+        box.ClipType.Length = length
+        return Show(box, view)
+
+    cropped = crop(cut)
+    ColorBy(cropped, ("CELLS", args.field))
+    lut = GetColorTransferFunction(args.field)
+    lut.ApplyPreset("Viridis (matplotlib)", True)
+    lut.RescaleTransferFunction(0.0, args.max if args.max is not None else max(field_range[1], 1e-12))
+    cropped.SetScalarBarVisibility(view, True)
+    bar = GetScalarBar(lut, view)
+    bar.TitleColor = bar.LabelColor = [0.0, 0.0, 0.0]
+    if needle_length > 0:
+        needle_shown = crop(needle_cut)
+        ColorBy(needle_shown, None)
+        needle_shown.DiffuseColor = needle_shown.AmbientColor = [0.55, 0.55, 0.55]
+
     view.CameraFocalPoint = centre
     view.CameraPosition = [c + 100.0 * d for c, d in zip(centre, direction)]
     view.CameraViewUp = up
-    view.CameraParallelScale = scale
+    view.CameraParallelScale = view_height / 2
 
-    title = Text(Text=f"{args.field} at t = {times[-1]:g} s, plane {args.normal} = {args.offset_mm:g} mm "
-                      f"(max {field_range[1]:.4g})")
+    unit = information(xdmf, f"unit:{args.field}") or "?"  # the writer states each field's unit
+    bar.Title = f"{args.field.replace('_', ' ')} [{unit}]"
+    bar.ComponentTitle = ""
+    bar.WindowLocation = "Any Location"
+    bar.Orientation = "Vertical"
+    bar.Position = [field_width + 0.04, 0.08]
+    bar.ScalarBarLength = 0.75
+    bar.TitleFontSize = bar.LabelFontSize = 14
+    bar.RangeLabelFormat = "%-#.3g"
+
+    title = Text(Text=f"{args.field.replace('_', ' ')} at t = {times[-1]:g} s, plane {args.normal} = {args.offset_mm:g} mm "
+                      f"(max {field_range[1]:.4g}{'' if unit == '1' else ' ' + unit}); field {width:.3g} x {height:.3g} mm")
     title_shown = Show(title, view)
     title_shown.Color = [0.0, 0.0, 0.0]
     title_shown.FontSize = 14
+    title_shown.WindowLocation = "Upper Center"
     SaveScreenshot(png, view, ImageResolution=args.size)
     print(f"wrote {png} ({args.field} max {field_range[1]:.6g} on the cut)")
 

@@ -128,28 +128,46 @@ def motion_label(motion):
 
 
 def finish(fig, png):
+    """Writes the PNG (legends and notes placed outside the axes included) and returns the figure."""
     png = pathlib.Path(png)
     png.parent.mkdir(parents=True, exist_ok=True)
-    fig.tight_layout()
-    fig.savefig(png, dpi=130)
+    fig.savefig(png, dpi=130, bbox_inches="tight")
     plt.close(fig)
     print(f"wrote {png}")
+    return fig
+
+
+MARKERS = "osD^vP*Xph<>"
+
+
+def line_styles(count):
+    """`count` styles with distinct colours (tab10/tab20, or a colour map sampled evenly for a full
+    grid) and cycling markers, so neighbouring colours of a large grid still differ in shape."""
+    if count <= 10:
+        colours = [plt.get_cmap("tab10")(k) for k in range(count)]
+    elif count <= 20:
+        colours = [plt.get_cmap("tab20")(k) for k in range(count)]
+    else:
+        colours = [plt.get_cmap("turbo")(x) for x in np.linspace(0.05, 0.95, count)]
+    return [dict(color=c, marker=MARKERS[k % len(MARKERS)]) for k, c in enumerate(colours)]
 
 
 def no_data(ax, text):
     ax.text(0.5, 0.5, text, ha="center", va="center", transform=ax.transAxes)
 
 
-def finish_axes(fig, ax, png, drawn, xlabel, ylabel, title, legend_size=7, legend_at="best"):
-    """Labels, legend and grid of a one-axes figure, then the PNG."""
+def finish_axes(fig, ax, png, drawn, xlabel, ylabel, title, legend_size=7):
+    """Labels, grid and a legend beside the axes (never over the curves), then the PNG."""
     if not drawn:
         no_data(ax, "no completed runs")
     ax.set_xlabel(xlabel)
     ax.set_ylabel(ylabel)
     ax.set_title(title)
-    ax.legend(fontsize=legend_size, loc=legend_at)
+    entries = len(ax.get_legend_handles_labels()[1])
+    ax.legend(fontsize=legend_size, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0,
+              ncol=1 if entries <= 24 else 2)
     ax.grid(True, which="both", alpha=0.3)
-    finish(fig, png)
+    return finish(fig, png)
 
 
 def stress_strain(sweep, png, grid=None):
@@ -159,22 +177,24 @@ def stress_strain(sweep, png, grid=None):
     points = sweep.indices(grid)
     summaries = {i: sweep.summary(i) for i in points}
     several_motions = len({motion_of(s) for s in summaries.values()}) > 1
-    for i in sorted(points, key=lambda i: tip_of(summaries[i])):
+    ordered = sorted(points, key=lambda i: (tip_of(summaries[i]), motion_of(summaries[i])))
+    for i, style in zip(ordered, line_styles(len(ordered))):
         h = sweep.history(i)
         label = tip_label(tip_of(summaries[i]))
         if several_motions:
             label += f" ({motion_label(motion_of(summaries[i]))})"
         strain, stress = h["max_log_strain"], h["max_von_mises"] / 1e3
         keep = stress > 0  # the log axis cannot show the unloaded start
-        line, = ax.plot(strain[keep], stress[keep], marker=".", label=label)
-        ax.plot(strain[-1], stress[-1], marker="o", color=line.get_color())
+        ax.plot(strain[keep], stress[keep], ms=4, lw=1.2, markevery=[-1] if keep.sum() > 1 else None,
+                label=label, **style)  # the marker shows where the run ends
     ax.axvline(limits["log_strain"], color="#d62728", ls="--", label=f"strain limit {limits['log_strain']:g}")
     ax.axhline(limits["stress_pa"] / 1e3, color="#9467bd", ls="--",
                label=f"stress limit {limits['stress_pa'] / 1e3:g} kPa")
     ax.set_yscale("log")
     ax.set_xlim(left=0)
-    finish_axes(fig, ax, png, points, "max principal logarithmic strain", "max von Mises stress [kPa] (log scale)",
-                "Stress and log strain per needle tip (maxima over the tissue at each time)", legend_at="lower right")
+    return finish_axes(fig, ax, png, points, "max principal logarithmic strain",
+                       "max von Mises stress [kPa] (log scale)",
+                       "Stress and log strain per needle tip (maxima over the tissue at each time)")
 
 
 def fillet(sweep, png, grid=None):
@@ -187,13 +207,14 @@ def fillet(sweep, png, grid=None):
         key = (radius, bevel if tau < radius else None, motion_of(s))
         groups.setdefault(key, []).append((tau, s["max"]["von_mises_pa"]["value"] / 1e3))
     several_motions = len({k[2] for k in groups}) > 1
-    for (radius, bevel, motion), values in sorted(groups.items(), key=lambda kv: (kv[0][0], kv[0][1] or 0)):
+    ordered = sorted(groups.items(), key=lambda kv: (kv[0][0], kv[0][1] or 0))
+    for ((radius, bevel, motion), values), style in zip(ordered, line_styles(len(ordered))):
         values.sort()
         label = f"r {radius:g} mm, " + (f"{bevel:g}°" if bevel is not None else "rounded")
         if several_motions:
             label += f" ({motion_label(motion)})"
-        ax.plot([v[0] for v in values], [v[1] for v in values], marker="o", label=label)
-    finish_axes(fig, ax, png, groups, "tip fillet radius τ [mm]", "max von Mises stress [kPa]",
+        ax.plot([v[0] for v in values], [v[1] for v in values], label=label, **style)
+    return finish_axes(fig, ax, png, groups, "tip fillet radius τ [mm]", "max von Mises stress [kPa]",
                 "Maximum stress against fillet radius", legend_size=8)
 
 
@@ -207,16 +228,16 @@ def strain_rate(sweep, png, grid=None):
     speeds = sorted({motion_of(s) for s in summaries.values()})
     names = dict(zip(speeds, ["slow", "medium", "fast"])) if len(speeds) == 3 else {}
     several_tips = len({tip_of(s) for s in summaries.values()}) > 1
-    for i in points:
+    for i, style in zip(points, line_styles(len(points))):
         h = sweep.history(i)
         motion = motion_of(summaries[i])
         label = (f"{names[motion]}: " if motion in names else "") + motion_label(motion)
         if several_tips:
             label += f", {tip_label(tip_of(summaries[i]))}"
-        ax.plot(h["time_s"], h["max_strain_rate"], marker=".", label=label)
+        ax.plot(h["time_s"], h["max_strain_rate"], ms=4, label=label, **style)
     ax.axhline(limits["strain_rate_per_s"], color="#d62728", ls="--",
                label=f"strain-rate limit {limits['strain_rate_per_s']:g} 1/s")
-    finish_axes(fig, ax, png, points, "time [s]", "max principal strain rate [1/s]",
+    return finish_axes(fig, ax, png, points, "time [s]", "max principal strain rate [1/s]",
                 "Tissue strain rate against insertion and rotation speed")
 
 
@@ -231,8 +252,32 @@ def varying_keys(sweep, rows):
     return out
 
 
-def short(key):
-    return key.rsplit(".", 1)[-1]
+# Words for the keys a design study sweeps; any other key is spelt out from its name and unit suffix.
+KEY_WORDS = {"needle.radius_mm": "needle radius r [mm]", "needle.bevel_deg": "bevel angle α [°]",
+             "needle.fillet_mm": "tip fillet radius τ [mm]", "needle.edge_radius_um": "edge radius ρ [µm]",
+             "motion.insertion_speed_mm_per_s": "insertion speed [mm/s]",
+             "motion.rotation_speed_deg_per_s": "rotation speed [°/s]"}
+UNIT_SUFFIXES = (("_mm_per_s", "mm/s"), ("_deg_per_s", "°/s"), ("_mm", "mm"), ("_um", "µm"), ("_deg", "°"),
+                 ("_pa", "Pa"), ("_s", "s"))
+
+
+def key_label(key):
+    """A case key in words with its unit: "needle.fillet_mm" -> "tip fillet radius τ [mm]"."""
+    if key in KEY_WORDS:
+        return KEY_WORDS[key]
+    section, name = key.split(".", 1) if "." in key else ("", key)
+    for suffix, unit in UNIT_SUFFIXES:
+        if name.endswith(suffix):
+            return f"{section} {name[:-len(suffix)]}".strip().replace("_", " ") + f" [{unit}]"
+    return f"{section} {name}".strip().replace("_", " ")
+
+
+def value_text(key, value):
+    """`key = value` in words for a panel title."""
+    label = key_label(key)
+    unit = label[label.rfind("[") + 1:-1] if label.endswith("]") else ""
+    words = label[:label.rfind(" [")] if unit else label
+    return f"{words} {value:g} {unit}".strip() if isinstance(value, float) else f"{words} {value}"
 
 
 def map_mark(sweep, i):
@@ -274,6 +319,7 @@ def safety_map(sweep, png, x=None, y=None, grid=None):
               "run failed": dict(marker="^", color="k"), "impossible": dict(marker="s", color="#b0b0b0"),
               "pending": dict(marker="o", color="#1f77b4", fillstyle="none")}
     seen = set()
+    notes = {}  # note -> its letter: a letter beside a marker never overprints its neighbours
     for ax, panel in zip(axes.flat, panels):
         for i in rows:
             if tuple(t[k][i] for k in panel_keys) != panel:
@@ -283,23 +329,28 @@ def safety_map(sweep, png, x=None, y=None, grid=None):
             ax.plot(t[x][i], yv, ls="none", ms=11, label=None if status in seen else status, **styles[status])
             seen.add(status)
             if note:
-                ax.annotate(note, (t[x][i], yv), textcoords="offset points", xytext=(6, 6), fontsize=6)
-        ax.set_xlabel(short(x))
-        ax.set_ylabel(short(y) if y else "")
+                letter = notes.setdefault(note, "abcdefghijklmnopqrstuvwxyz"[len(notes) % 26])
+                ax.annotate(letter, (t[x][i], yv), textcoords="offset points", xytext=(7, 5), fontsize=7)
+        ax.set_xlabel(key_label(x))
+        ax.set_ylabel(key_label(y) if y else "")
         if not y:
             ax.set_yticks([])
-        title = ", ".join(f"{short(k)} = {v:g}" if isinstance(v, float) else f"{short(k)} = {v}"
-                          for k, v in zip(panel_keys, panel))
+        title = ", ".join(value_text(k, v) for k, v in zip(panel_keys, panel))
         ax.set_title(textwrap.fill(title, 60) or (f"grid {grid}" if grid else "design grid"), fontsize=8)
         ax.margins(0.2)
         ax.grid(True, alpha=0.3)
     for ax in list(axes.flat)[len(panels):]:
         ax.axis("off")
     handles = [plt.Line2D([], [], ls="none", ms=9, label=s, **styles[s]) for s in styles if s in seen]
-    fig.legend(handles=handles, loc="upper right", fontsize=8)
-    fig.suptitle(textwrap.fill("Verdict per design: critical-distance values against the limits (labels: failing "
-                               "limits or violated geometry rules)", 40 * columns), fontsize=10, x=0.02, ha="left")
-    finish(fig, png)
+    fig.tight_layout(rect=(0, 0, 1, 0.93))
+    fig.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.0, 0.93), fontsize=8)
+    fig.suptitle(textwrap.fill("Verdict per design: critical-distance values against the limits (letters: the "
+                               "failing limits or violated geometry rules below)", 40 * columns), fontsize=10, x=0.02,
+                 ha="left")
+    if notes:
+        fig.text(0.02, 0.0, "\n".join(textwrap.fill(f"{letter}: {note}", 45 * columns) for note, letter in notes.items()),
+                 fontsize=7, va="top", ha="left")
+    return finish(fig, png)
 
 
 SAFETY_LIMITS = (("log_strain", "log strain"), ("strain_rate_per_s", "strain rate"), ("stress_pa", "von Mises stress"))

@@ -19,6 +19,7 @@
 """
 import argparse
 import csv
+import itertools
 import json
 import math
 import os
@@ -282,9 +283,84 @@ def steering(args):
     check(result.returncode == 0 and png_ok(png), "safety-steering chart written and not blank")
 
 
+def full_grid(out):
+    """A synthetic sweep directory the size of the quick design grid: 4 radii x 2 bevels x 3 fillets
+    (24 points, 22 of them completed tips, 2 impossible with long rule names), with made-up maxima."""
+    radii, bevels, fillets = [0.32, 0.5, 0.83, 1.25], [10.0, 20.0], [0.15, 0.25, 0.45]
+    rows = []
+    for radius, bevel, fillet in itertools.product(radii, bevels, fillets):
+        impossible = radius == 0.32 and fillet == 0.45
+        rows.append((radius, bevel, fillet, "impossible" if impossible else "completed"))
+    out.mkdir(parents=True)
+    verdicts = ["verdict_log_strain", "verdict_strain_rate_per_s", "verdict_stress_pa"]
+    columns = ["point", "grids", "needle.radius_mm", "needle.bevel_deg", "needle.fillet_mm", "status", "verdict",
+               *verdicts, "safe", "rules"]
+    table = {c: [] for c in columns}
+    for n, (radius, bevel, fillet, status) in enumerate(rows):
+        name = f"p{n:02d}"
+        for column, value in zip(columns, [name, "main", radius, bevel, fillet, status]):
+            table[column].append(value)
+        passes = int(n % 3 != 0)
+        for column in ["verdict", *verdicts, "safe"]:
+            table[column].append(passes if status == "completed" else -1)
+        table["rules"].append("fillet-fits-bevel: the fillet does not fit the bevel face, core-contains-needle"
+                              if status == "impossible" else "")
+        if status != "completed":
+            continue
+        (out / name).mkdir()
+        case = {"needle": {"radius_mm": radius, "bevel_deg": bevel, "fillet_mm": fillet},
+                "motion": {"insertion_speed_mm_per_s": 1.0, "rotation_speed_deg_per_s": 180.0}}
+        (out / name / "summary.json").write_text(json.dumps({"status": "completed", "case": case,
+                                                             "max": {"von_mises_pa": {"value": 1e3 * (n + 1)}}}))
+        with open(out / name / "history.csv", "w") as f:
+            f.write("time_s,max_log_strain,max_von_mises,max_strain_rate\n")
+            for k in range(6):
+                f.write(f"{0.02 * k},{0.01 * k * (1 + n / 10)},{200.0 * k * (n + 1)},{k * 0.5}\n")
+    with h5py.File(out / "sweep.h5", "w") as f:
+        f.attrs["format"] = "needlefem-sweep-table"
+        f.attrs["columns"] = columns
+        for column, values in table.items():
+            f[column] = values if not isinstance(values[0], str) else np.array(values, dtype=h5py.string_dtype())
+    return sum(r[3] == "completed" for r in rows)
+
+
+def overlaps(a, b):
+    return a.x0 < b.x1 and b.x0 < a.x1 and a.y0 < b.y1 and b.y0 < a.y1
+
+
+def full_grid_figures(args):
+    """Fig. 4 and the safety map stay readable at the size of the full design grid."""
+    out = pathlib.Path(args.out)
+    shutil.rmtree(out, ignore_errors=True)
+    designs = full_grid(out / "sweep")
+    sys.path.insert(0, str(pathlib.Path(args.figures).parent))
+    import sweep_figures
+    table = sweep_figures.Sweep(out / "sweep")
+    fig = sweep_figures.stress_strain(table, out / "fig4.png")
+    check(png_ok(out / "fig4.png"), "fig4.png written and not blank")
+    ax = fig.axes[0]
+    designs_drawn = [line for line in ax.get_lines() if not line.get_label().startswith(("strain limit", "stress limit"))]
+    colours = {tuple(line.get_color()) if not isinstance(line.get_color(), str) else line.get_color() for line in designs_drawn}
+    check(len(designs_drawn) == designs and len(colours) == designs,
+          f"Fig. 4: {len(colours)} distinct colours for {len(designs_drawn)} lines of {designs} designs")
+    renderer = fig.canvas.get_renderer()
+    check(not overlaps(ax.get_legend().get_window_extent(renderer), ax.get_window_extent(renderer)),
+          "Fig. 4: the legend lies outside the axes")
+    fig = sweep_figures.safety_map(table, out / "safety_map.png")
+    check(png_ok(out / "safety_map.png"), "safety_map.png written and not blank")
+    renderer = fig.canvas.get_renderer()
+    labels = [a.get_xlabel() for a in fig.axes] + [a.get_ylabel() for a in fig.axes if a.get_ylabel()]
+    check(all("[" in label and "." not in label.split("[")[0] for label in labels if label),
+          f"safety map: axis labels in words with units ({sorted(set(labels))})")
+    texts = [t for a in fig.axes for t in a.texts if t.get_text()]
+    boxes = [t.get_window_extent(renderer) for t in texts]
+    clashes = sum(overlaps(boxes[i], boxes[j]) for i in range(len(boxes)) for j in range(i))
+    check(texts and clashes == 0, f"safety map: {len(texts)} design labels, {clashes} overlapping")
+
+
 def main():
     parser = argparse.ArgumentParser()
-    parser.add_argument("mode", choices=["resume", "bad", "figures", "steering"])
+    parser.add_argument("mode", choices=["resume", "bad", "figures", "steering", "full-grid"])
     parser.add_argument("--exe")
     parser.add_argument("--sweep")
     parser.add_argument("--out", required=True)
@@ -292,7 +368,8 @@ def main():
     parser.add_argument("--figures")
     parser.add_argument("--render")
     args = parser.parse_args()
-    {"resume": resume, "bad": bad, "figures": figures, "steering": steering}[args.mode](args)
+    {"resume": resume, "bad": bad, "figures": figures, "steering": steering,
+     "full-grid": full_grid_figures}[args.mode](args)
     if failures:
         print(f"{len(failures)} check(s) failed")
         return 1
