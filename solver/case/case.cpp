@@ -149,6 +149,45 @@ void apply_override(const std::string& assignment, Case::Values& into) {
   into.given.insert(key);
 }
 
+// motion.duration_s from the motion's length as the case states it: the duration itself, the
+// insertion travel over the insertion speed, or the rotation angle over the rotation speed, each
+// plus half the start ramp (the travel the smoothstep start loses: geometry/needle_motion.hpp).
+// Speeds are never derived, so every statement given must yield the same duration.
+double motion_duration(const Checker& checker, const Case::Values& v) {
+  const auto number = [&](const std::string& key) { return std::get<double>(v.values.at(key)); };
+  const double half_ramp = 0.5 * number("motion.ramp_s");
+  const std::string ramp_note = half_ramp > 0.0 ? " with the start ramp" : "";
+  struct Statement {
+    std::string key, text;
+    double duration;
+  };
+  std::vector<Statement> stated;
+  if (v.given.count("motion.duration_s")) {
+    const double d = number("motion.duration_s");
+    stated.push_back({"motion.duration_s", fmt::format("motion.duration_s = {:.6g} s", d), d});
+  }
+  // A length at a speed: the duration it takes, if the speed moves the needle that way.
+  const auto length = [&](const std::string& key, const std::string& speed_key, const char* unit) {
+    if (!v.given.count(key)) return;
+    const double amount = number(key), speed = number(speed_key);
+    if (amount == 0.0 && speed == 0.0) return;  // no turn at no speed: says nothing about the duration
+    if (speed == 0.0) checker.fail(key, fmt::format("{:.6g} {} needs a nonzero {}", amount, unit, speed_key));
+    if (!(amount / speed > 0.0))
+      checker.fail(key, fmt::format("{:.6g} {} is not reached moving at {} = {:.6g} {}/s (the signs differ or the "
+                                    "length is 0)", amount, unit, speed_key, speed, unit));
+    const double d = amount / speed + half_ramp;
+    stated.push_back({key, fmt::format("{} = {:.6g} {} at {} = {:.6g} {}/s takes {:.6g} s{}", key, amount, unit,
+                                       speed_key, speed, unit, d, ramp_note), d});
+  };
+  length("motion.insertion_travel_mm", "motion.insertion_speed_mm_per_s", "mm");
+  length("motion.rotation_deg", "motion.rotation_speed_deg_per_s", "deg");
+  if (stated.empty()) return number("motion.duration_s");
+  for (const auto& other : stated)
+    if (std::abs(other.duration - stated.front().duration) > 1e-6 * stated.front().duration)
+      checker.fail(other.key, fmt::format("{}, but {}", other.text, stated.front().text));
+  return stated.front().duration;
+}
+
 Value default_value(const KeySpec& spec) {
   return std::visit(
       [](const auto& v) -> Value {
@@ -175,10 +214,19 @@ Case Case::parse(const std::string& toml_text, const std::string& origin, const 
                                 e.source().begin.column, e.description()));
   }
   checker.flatten(table, "", *values);
-  for (const auto& assignment : overrides) apply_override(assignment, *values);
+  Values set;
+  for (const auto& assignment : overrides) apply_override(assignment, set);
+  if (std::any_of(set.given.begin(), set.given.end(), states_motion_length))
+    for (const auto& key : motion_length_keys()) {
+      values->values.erase(key);
+      values->given.erase(key);
+    }
+  for (auto& [key, value] : set.values) values->values[key] = std::move(value);
+  values->given.insert(set.given.begin(), set.given.end());
   for (const auto& spec : case_schema())
     if (!values->values.count(spec.key) && !std::holds_alternative<std::monostate>(spec.fallback))
       values->values[spec.key] = default_value(spec);
+  values->values["motion.duration_s"] = motion_duration(Checker(origin), *values);
   const auto base = std::filesystem::path(origin).parent_path();
   return Case(origin, base, std::move(values));
 }
@@ -232,6 +280,16 @@ std::filesystem::path Case::path(const std::string& key) const {
   if (value.empty()) return {};
   std::filesystem::path p(value);
   return p.is_absolute() ? p : base_dir_ / p;
+}
+
+const std::vector<std::string>& motion_length_keys() {
+  static const std::vector<std::string> keys{"motion.duration_s", "motion.insertion_travel_mm", "motion.rotation_deg"};
+  return keys;
+}
+
+bool states_motion_length(const std::string& key) {
+  const auto& keys = motion_length_keys();
+  return std::find(keys.begin(), keys.end(), key) != keys.end();
 }
 
 CaseError Case::error(const std::string& key, const std::string& reason) const {

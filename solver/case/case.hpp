@@ -26,6 +26,14 @@ class CaseError : public std::runtime_error {
 // would be silent.
 std::string read_input_file(const std::filesystem::path& file, const std::string& what);
 
+// The keys that state how long the needle moves: motion.duration_s, motion.insertion_travel_mm,
+// motion.rotation_deg. Case::parse resolves motion.duration_s from those given and refuses them
+// if they disagree. A layer of overrides (--set, a sweep's set and axis values) that gives one of
+// them restates the motion's length: the lower layers' statements of it are dropped, not
+// contradicted, so `--set motion.duration_s=0.01` shortens a case that states its travel.
+const std::vector<std::string>& motion_length_keys();
+bool states_motion_length(const std::string& key);
+
 class Case {
  public:
   // Reads and validates a TOML case file, then applies "key=value" overrides (from --set).

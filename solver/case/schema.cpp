@@ -130,11 +130,23 @@ std::vector<KeySpec> build_schema() {
             "displacement faces, s(t) rising from 0 to 1 over loading.ramp_s"),
 
       // --- needle motion (brain-tip) and loading history (block) -------------------------------
+      // How long the needle moves is stated once, by one or more of motion.duration_s,
+      // motion.insertion_travel_mm and motion.rotation_deg; the speeds are never derived from it
+      // (Case::parse resolves motion.duration_s, the key every reader uses).
       real("motion.insertion_speed_mm_per_s", 1.0, 0.0, 1e4, "Needle insertion speed along its axis",
            false),
       real("motion.rotation_speed_deg_per_s", 180.0, -1e6, 1e6,
            "Needle rotation speed about its axis (paper: pi rad/s = 180 deg/s)"),
-      real("motion.duration_s", 0.1, 0.0, 1e6, "Duration of the insertion and rotation"),
+      real("motion.insertion_travel_mm", std::monostate{}, 0.0, 1e4,
+           "How far the needle advances (paper: 0.1 mm); the motion then lasts travel / insertion speed "
+           "(+ half of motion.ramp_s), so a changed speed keeps the depth"),
+      real("motion.rotation_deg", std::monostate{}, -1e6, 1e6,
+           "How far the needle turns, signed like the rotation speed (paper: pi/10 = 18 deg); the motion then "
+           "lasts angle / rotation speed (+ half of motion.ramp_s)", false),
+      real("motion.duration_s", 0.1, 0.0, 1e6,
+           "Duration of the insertion and rotation; follows from motion.insertion_travel_mm or "
+           "motion.rotation_deg when one is given (all that are given must agree to 1e-6). A --set or a "
+           "sweep value of one of these three replaces the case file's statement of the motion's length"),
       real("motion.ramp_s", 0.0, 0.0, 1e6,
            "Start ramp: the speeds rise smoothly from 0 over this time (smoothstep; the travel loses "
            "speed * ramp / 2). 0 = full speed at t = 0 as in the paper (geometry/needle_motion.hpp)", false),

@@ -293,6 +293,14 @@ void insert_json(FlatTable& flat, const std::string& key, const nlohmann::json& 
   }
 }
 
+// The point's keys overridden by a layer (the sweep's set, a grid's set and axis values). A layer
+// stating the motion's length replaces the lower layers' statement of it (case/case.hpp).
+void overlay(FlatTable& point, const FlatTable& layer) {
+  if (std::any_of(layer.begin(), layer.end(), [](const auto& entry) { return states_motion_length(std::string(entry.first.str())); }))
+    for (const auto& key : motion_length_keys()) point.erase(key);
+  for (const auto& [key, value] : layer) point.insert_or_assign(key, value);
+}
+
 void add_unique(std::vector<std::string>& list, const std::string& item) {
   if (std::find(list.begin(), list.end(), item) == list.end()) list.push_back(item);
 }
@@ -348,7 +356,7 @@ SweepPlan load_sweep(const fs::path& sweep_file) {
     for (const auto& axis : g.axes) count *= axis.size();
     for (std::size_t flat_index = 0; flat_index < count; ++flat_index) {
       FlatTable point = base_flat;
-      for (const auto& [key, value] : fixed) point.insert_or_assign(key, value);
+      overlay(point, fixed);
       FlatTable assigned = g.set;
       std::size_t rest = flat_index;
       for (auto axis = g.axes.rbegin(); axis != g.axes.rend(); ++axis) {  // last axis varies fastest
@@ -357,7 +365,7 @@ SweepPlan load_sweep(const fs::path& sweep_file) {
         for (std::size_t k = 0; k < axis->keys.size(); ++k) assigned.insert_or_assign(axis->keys[k], axis->values[k][i]);
       }
       absolute_mesh_file(assigned, sweep_dir);
-      for (const auto& [key, value] : assigned) point.insert_or_assign(key, value);
+      overlay(point, assigned);
 
       std::vector<std::string> parts;
       nlohmann::json values;
@@ -391,20 +399,22 @@ SweepPlan plan_axis(const fs::path& base_case, const std::vector<std::string>& s
   SweepPlan plan;
   plan.base_case = fs::absolute(base_case).lexically_normal();
   plan.swept_keys = {key};
-  FlatTable flat = base_case_table(plan.base_case);
+  FlatTable flat = base_case_table(plan.base_case), set_layer;
   const nlohmann::json resolved = base.to_json();
   for (const auto& assignment : set) {
     const std::string given = assignment.substr(0, assignment.find('='));
     std::string pointer = "/" + given;
     std::replace(pointer.begin(), pointer.end(), '.', '/');
-    insert_json(flat, given, resolved.at(nlohmann::json::json_pointer(pointer)));
+    insert_json(set_layer, given, resolved.at(nlohmann::json::json_pointer(pointer)));
   }
+  overlay(flat, set_layer);
   absolute_mesh_file(flat, plan.base_case.parent_path());  // a --set file is relative to the case, as Case::path reads it
   std::string overrides;
   for (const auto& assignment : set) overrides += fmt::format(", --set {}", assignment);
   for (const auto& axis_point : points) {
-    FlatTable point = flat;
-    insert_json(point, key, axis_point.value);
+    FlatTable point = flat, axis_layer;
+    insert_json(axis_layer, key, axis_point.value);
+    overlay(point, axis_layer);
     const std::string header = fmt::format("# {}{}, {} = {}.\n", plan.base_case.string(), overrides, key,
                                            axis_point.value.dump());
     plan.points.push_back(design_point(point, axis_point.name, nlohmann::json{{key, axis_point.value}}, header,

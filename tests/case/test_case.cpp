@@ -111,3 +111,81 @@ TEST(Case, CrossKeyErrorsUseTheSameFormat) {
   const Case c = Case::parse("", "b.toml");
   EXPECT_STREQ(c.error("needle.fillet_mm", "too big").what(), "b.toml: key 'needle.fillet_mm': too big");
 }
+
+// --- the motion's length: duration, travel or rotation angle ---------------------------------
+
+namespace {
+double duration_of(const std::string& motion, const std::vector<std::string>& overrides = {}) {
+  return Case::parse("[motion]\n" + motion, "cases/x.toml", overrides).real("motion.duration_s");
+}
+}  // namespace
+
+TEST(MotionLength, DurationFollowsFromWhicheverStatementIsGiven) {
+  EXPECT_DOUBLE_EQ(duration_of(""), 0.1);                                                // the default
+  EXPECT_DOUBLE_EQ(duration_of("duration_s = 0.3\n"), 0.3);                              // the old key alone
+  EXPECT_DOUBLE_EQ(duration_of("insertion_travel_mm = 0.2\n"), 0.2);                     // at the default 1 mm/s
+  EXPECT_DOUBLE_EQ(duration_of("insertion_travel_mm = 0.2\ninsertion_speed_mm_per_s = 4\n"), 0.05);
+  EXPECT_DOUBLE_EQ(duration_of("rotation_deg = 36\n"), 0.2);                             // at the default 180 deg/s
+  EXPECT_DOUBLE_EQ(duration_of("rotation_deg = -9\nrotation_speed_deg_per_s = -90\n"), 0.1);
+  EXPECT_DOUBLE_EQ(duration_of("insertion_travel_mm = 0.1\nrotation_deg = 18\n"), 0.1);  // the paper's motion
+  EXPECT_DOUBLE_EQ(duration_of("insertion_travel_mm = 0.1\nrotation_deg = 18\nduration_s = 0.1\n"), 0.1);
+  // The start ramp loses half its length of travel: the duration makes it up.
+  EXPECT_DOUBLE_EQ(duration_of("insertion_travel_mm = 0.1\nramp_s = 0.02\n"), 0.11);
+  // No turn at no rotation speed says nothing about the duration.
+  EXPECT_DOUBLE_EQ(duration_of("insertion_travel_mm = 0.1\nrotation_deg = 0\nrotation_speed_deg_per_s = 0\n"), 0.1);
+}
+
+TEST(MotionLength, ContradictionsAreOneLineNamingTheKeys) {
+  const std::string travel_duration =
+      error_of("[motion]\ninsertion_travel_mm = 0.2\ninsertion_speed_mm_per_s = 1\nduration_s = 0.1\n");
+  EXPECT_EQ(travel_duration,
+            "cases/x.toml: key 'motion.insertion_travel_mm': motion.insertion_travel_mm = 0.2 mm at "
+            "motion.insertion_speed_mm_per_s = 1 mm/s takes 0.2 s, but motion.duration_s = 0.1 s");
+  const std::string travel_rotation = error_of("[motion]\ninsertion_travel_mm = 0.1\nrotation_deg = 36\n");
+  EXPECT_EQ(travel_rotation,
+            "cases/x.toml: key 'motion.rotation_deg': motion.rotation_deg = 36 deg at "
+            "motion.rotation_speed_deg_per_s = 180 deg/s takes 0.2 s, but motion.insertion_travel_mm = 0.1 mm at "
+            "motion.insertion_speed_mm_per_s = 1 mm/s takes 0.1 s");
+  EXPECT_NE(error_of("[motion]\ninsertion_travel_mm = 0.1\nramp_s = 0.02\nduration_s = 0.1\n").find("with the start ramp"),
+            std::string::npos);
+  EXPECT_EQ(error_of("[motion]\ninsertion_travel_mm = 0.1\ninsertion_speed_mm_per_s = 0\n"),
+            "cases/x.toml: key 'motion.insertion_travel_mm': 0.1 mm needs a nonzero motion.insertion_speed_mm_per_s");
+  EXPECT_NE(error_of("[motion]\nrotation_deg = -18\n").find("key 'motion.rotation_deg': -18 deg is not reached moving at "
+                                                           "motion.rotation_speed_deg_per_s = 180 deg/s"),
+            std::string::npos);
+  for (const auto& e : {travel_duration, travel_rotation}) EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+}
+
+TEST(MotionLength, AnOverrideRestatesTheLengthAndSpeedsKeepTheDepth) {
+  const std::string paper = "insertion_travel_mm = 0.1\nrotation_deg = 18\n";
+  EXPECT_DOUBLE_EQ(duration_of(paper, {"motion.duration_s=0.01"}), 0.01);  // shortened: the file's travel dropped
+  const Case shortened = Case::parse("[motion]\n" + paper, "cases/x.toml", {"motion.duration_s=0.01"});
+  EXPECT_FALSE(shortened.has("motion.insertion_travel_mm"));
+  EXPECT_DOUBLE_EQ(duration_of(paper, {"motion.insertion_speed_mm_per_s=2", "motion.rotation_speed_deg_per_s=360"}),
+                   0.05);
+  EXPECT_DOUBLE_EQ(duration_of("duration_s = 0.1\n", {"motion.insertion_travel_mm=0.3"}), 0.3);
+  // Within one layer the statements must agree.
+  EXPECT_NE(error_of("", {"motion.duration_s=0.2", "motion.insertion_travel_mm=0.1"}).find("key 'motion.insertion_travel_mm'"),
+            std::string::npos);
+  // A speed changed alone on a travel-stated case contradicts its rotation angle.
+  EXPECT_NE(error_of("[motion]\n" + paper, {"motion.insertion_speed_mm_per_s=2"}).find("but motion.insertion_travel_mm"),
+            std::string::npos);
+}
+
+TEST(MotionLength, CaseFilesStatingTravelAndRotationKeepTheirMotion) {
+  struct Motion {
+    const char* file;
+    double speed_mm_per_s, rotation_deg_per_s, duration_s;
+  };
+  // The rate study's and Table I's speeds and durations before they stated the travel and angle.
+  for (const Motion& m : {Motion{"rate_study/fast.toml", 2.0, 360.0, 0.05}, Motion{"rate_study/medium.toml", 1.0, 180.0, 0.1},
+                          Motion{"rate_study/slow.toml", 0.5, 90.0, 0.2}, Motion{"table1/r0.50_a20_f0.25.toml", 1.0, 180.0, 0.1},
+                          Motion{"table1/r1.25_rounded.toml", 1.0, 180.0, 0.1}}) {
+    const Case c = Case::load(std::string(NEEDLEFEM_CASES_DIR) + "/" + m.file);
+    EXPECT_EQ(c.real("motion.insertion_speed_mm_per_s"), m.speed_mm_per_s) << m.file;
+    EXPECT_EQ(c.real("motion.rotation_speed_deg_per_s"), m.rotation_deg_per_s) << m.file;
+    EXPECT_EQ(c.real("motion.duration_s"), m.duration_s) << m.file;  // bit for bit
+    EXPECT_DOUBLE_EQ(c.real("motion.insertion_travel_mm"), 0.1) << m.file;
+    EXPECT_DOUBLE_EQ(c.real("motion.rotation_deg"), 18.0) << m.file;
+  }
+}
