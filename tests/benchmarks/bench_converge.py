@@ -67,5 +67,6 @@ report = {
     "levels": levels,
     "bands": bands,
 }
+args.out.mkdir(parents=True, exist_ok=True)
 (args.out / "bench_converge.json").write_text(json.dumps(report, indent=2) + "\n")
 print(f"converge {wall:.0f} s (target {TARGET_S:.0f} s); written {args.out / 'bench_converge.json'}")
