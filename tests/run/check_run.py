@@ -349,7 +349,7 @@ def needle_loads(out):
 def penalty(args):
     """The augmented enforcement's loads do not move with contact.penalty_factor (10 and 100);
     the plain penalty's do, which shows the check can see the difference."""
-    loads = {}
+    loads, peak_pressure = {}, {}
     for law in ("augmented", "penalty"):
         for factor in (10, 100):
             out = pathlib.Path(args.out) / f"{law}_c{factor}"
@@ -359,6 +359,9 @@ def penalty(args):
                                    "--set", f"contact.penalty_factor={factor}"])
             check(result.returncode == 0, f"{law} c = {factor}: run exits 0 ({result.stderr.strip()[-300:]})")
             loads[law, factor] = needle_loads(out) if result.returncode == 0 else (math.nan, math.nan)
+            if result.returncode == 0:
+                with h5py.File(out / "result.h5", "r") as h5:
+                    peak_pressure[law, factor] = float(h5["/series/node/contact_pressure"][-1].max())
             print(f"     {law} c = {factor}: axial force {loads[law, factor][0]:.6e} N, "
                   f"torque {loads[law, factor][1]:.6e} N m")
     for index, name in ((0, "axial force"), (1, "torque")):
@@ -366,6 +369,9 @@ def penalty(args):
         check(change["augmented"] <= 0.01, f"augmented: the needle's {name} moves {change['augmented']:.2%} <= 1 % "
                                            "from c = 10 to 100")
         check(change["penalty"] >= 0.03, f"plain penalty: it moves {change['penalty']:.2%} >= 3 %")
+    # The nodal pressure field carries the multiplier (its penetration alone is nearly closed).
+    ratio = peak_pressure.get(("augmented", 100), 0.0) / peak_pressure.get(("penalty", 100), math.inf)
+    check(0.5 <= ratio <= 2.0, f"augmented peak nodal contact pressure / plain penalty's = {ratio:.3f} in [0.5, 2]")
 
 
 def main():

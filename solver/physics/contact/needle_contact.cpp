@@ -63,14 +63,23 @@ NeedleContact::SurfaceFields NeedleContact::surface_fields(double t, const doubl
   SurfaceFields out;
   out.pressure.assign(mesh_.nodes.size(), 0.0);
   out.slip.assign(mesh_.nodes.size(), 0.0);
+  std::vector<double> offset_sum(mesh_.nodes.size(), 0.0), faces_at(mesh_.nodes.size(), 0.0);
+  for (std::size_t f = 0; f < contact_->face_count(); ++f) {
+    const double offset = contact_->mean_offset(f, t);
+    for (int a = 0; a < contact_->nodes_per_face(); ++a) {
+      offset_sum[contact_->face_nodes(f)[a]] += offset;
+      faces_at[contact_->face_nodes(f)[a]] += 1.0;
+    }
+  }
   for (std::size_t i = 0; i < cavity_nodes_.size(); ++i) {
     const int node = cavity_nodes_[i];
     const Point3& X = mesh_.nodes[node];
     Point3 x;
     for (int c = 0; c < 3; ++c) x[c] = X[c] + y[dofs.dof(node, c)];
     const ObstacleProjection p = needle_->project(x, t);
+    const double depth = offset_sum[node] / faces_at[node] - p.gap;  // the multiplier's offset, mean of its faces
     out.pressure[node] =
-        normal_pressure(std::max(0.0, -p.gap), node_penalty_[i], smoothing_pressure_ / node_penalty_[i]).pressure;
+        normal_pressure(std::max(0.0, depth), node_penalty_[i], smoothing_pressure_ / node_penalty_[i]).pressure;
     const Point3 chi = needle_->from_body(X, t);
     Point3 relative;
     for (int c = 0; c < 3; ++c) relative[c] = x[c] - chi[c];

@@ -16,8 +16,9 @@
 // M·e_z (opposes the rotation ω when friction drags the tissue).
 // Surface fields, evaluated at each cavity node a with the same law (visualisation; the forces
 // use the quadrature points):
-//   pressure p_a = p_N(⟨-g(x_a)⟩) of penalty_contact.hpp with ε̄_a, the mean penalty of the cavity
-//            faces around a (and δ_a = s μ₀/ε̄_a),
+//   pressure p_a = p_N(⟨ō_a - g(x_a)⟩) of penalty_contact.hpp with ε̄_a, the mean penalty of the
+//            cavity faces around a (and δ_a = s μ₀/ε̄_a), and ō_a the mean multiplier offset of
+//            those faces' points (augmented enforcement; 0 with the plain penalty),
 //   slip     s_a = |(I - n nᵀ)(x_a - χ(X_a, t))|, χ(X_a, t) = where the needle point that touched
 //            X_a at t = 0 (zero initial gap) is now: the tangential displacement of the tissue
 //            relative to the needle since t = 0 (0 for a tied cavity).

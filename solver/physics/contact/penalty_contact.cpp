@@ -325,13 +325,17 @@ Point3 PenaltyContact::point_position(const FacePoint& point, const double* x) c
   return position;
 }
 
-double PenaltyContact::effective_depth(const FacePoint& point, double gap, double t) const {
-  if (parameters_.normal_enforcement == NormalEnforcement::penalty) return -gap;
+double PenaltyContact::offset(const FacePoint& point, double t) const {
+  if (parameters_.normal_enforcement == NormalEnforcement::penalty) return 0.0;
   double ramp = 1.0;
   if (ramp_duration_ > 0.0) ramp = std::clamp((t - ramp_start_) / ramp_duration_, 0.0, 1.0);
-  const double offset =
-      point.offset_start + ramp * point.offset_increment + (t - ramp_start_) * point.offset_rate;
-  return std::max(0.0, offset) - gap;
+  return std::max(0.0, point.offset_start + ramp * point.offset_increment + (t - ramp_start_) * point.offset_rate);
+}
+
+double PenaltyContact::mean_offset(std::size_t face, double t) const {
+  double sum = 0.0;
+  for (const FacePoint& point : faces_[face].points) sum += offset(point, t);
+  return sum / static_cast<double>(faces_[face].points.size());
 }
 
 void PenaltyContact::accept_step(double t, const double* y, const double* ydot, const mechanics::DofMap& dofs) {

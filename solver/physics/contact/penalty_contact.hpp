@@ -215,6 +215,9 @@ class PenaltyContact final : public mechanics::SurfaceLoad {
   int nodes_per_face() const { return nodes_per_face_; }
   const int* face_nodes(std::size_t face) const { return face_nodes_.data() + face * nodes_per_face_; }
   double penalty(std::size_t face) const { return faces_[face].penalty; }
+  // Mean multiplier offset o(t) over the face's quadrature points, m (0 with the plain penalty):
+  // a node's pressure is the normal law at its penetration plus this (needle_contact.hpp).
+  double mean_offset(std::size_t face, double t) const;
   double elastic_slip(std::size_t face) const { return faces_[face].elastic_slip; }
 
   // One face's terms at current positions x (3m) and velocities v (3m) of its nodes.
@@ -265,8 +268,10 @@ class PenaltyContact final : public mechanics::SurfaceLoad {
   void gather(std::size_t face, const double* y, const double* ydot, const mechanics::DofMap& dofs, double* x,
               double* v) const;
   Point3 point_position(const FacePoint& point, const double* x) const;
-  // Penetration the normal law sees at time t: -g (+ the multiplier offset o(t), augmented).
-  double effective_depth(const FacePoint& point, double gap, double t) const;
+  // Multiplier offset o(t) of a point (augmented; 0 with the plain penalty), m.
+  double offset(const FacePoint& point, double t) const;
+  // Penetration the normal law sees at time t: o(t) - g.
+  double effective_depth(const FacePoint& point, double gap, double t) const { return offset(point, t) - gap; }
 
   const TetMesh& mesh_;
   std::shared_ptr<const RigidObstacle> obstacle_;
