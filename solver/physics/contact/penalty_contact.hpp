@@ -36,7 +36,7 @@
 //  * o(t) is a known function of time during the step, so Newton sees only ε_N: the stiffness,
 //    and the robustness, of the plain penalty;
 //  * o is continuous in time (setting o = z_n at once would shift the equilibrium by d at each
-//    step, which IDA's error test reads as an O(1) error and answers by cutting steps);
+//    step, which IDA's error test would read as an error that no step size reduces);
 //  * where the pressure varies smoothly the penetration left is the extrapolation's error,
 //    ~ h² z̈, instead of p/ε_N; a lagged update without the rate term leaves ~ h ṗ/ε_N, which
 //    changes with every change of the step, and the error test then held the steps of a
