@@ -340,7 +340,7 @@ double PenaltyContact::mean_offset(std::size_t face, double t) const {
 
 void PenaltyContact::accept_step(double t, const double* y, const double* ydot, const mechanics::DofMap& dofs) {
   const bool anchors = parameters_.friction_law == FrictionLaw::return_map;
-  const double step = t - last_accepted_;
+  const double step = t - last_update_;
   const bool augmented = parameters_.normal_enforcement == NormalEnforcement::augmented &&
                          step >= parameters_.multiplier_update_interval;
   if (!anchors && !augmented) return;
@@ -351,11 +351,11 @@ void PenaltyContact::accept_step(double t, const double* y, const double* ydot, 
       const Point3 position = point_position(point, x.data());
       const ObstacleProjection p = obstacle_->project(position, t);
       const double gap = p.gap - point.gap_offset;
-      const double depth = effective_depth(point, gap, t);
+      const double offset_now = offset(point, t), depth = offset_now - gap;  // o(t_n), z
       if (augmented) {
-        const double offset = depth + gap, target = std::max(0.0, depth);  // o(t_n), z_n
-        point.offset_start = offset;
-        point.offset_increment = target - offset;
+        const double target = std::max(0.0, depth);  // z_n
+        point.offset_start = offset_now;
+        point.offset_increment = target - offset_now;
         point.offset_rate = step > 0.0 && target > 0.0 ? (target - point.target) / step : 0.0;
         point.target = target;
       }
@@ -373,7 +373,7 @@ void PenaltyContact::accept_step(double t, const double* y, const double* ydot, 
   if (!augmented) return;
   ramp_start_ = t;
   ramp_duration_ = step;
-  last_accepted_ = t;
+  last_update_ = t;
 }
 
 void PenaltyContact::gather(std::size_t face, const double* y, const double* ydot, const mechanics::DofMap& dofs,

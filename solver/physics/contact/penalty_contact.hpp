@@ -279,7 +279,7 @@ class PenaltyContact final : public mechanics::SurfaceLoad {
   int nodes_per_face_ = 6;
   std::vector<int> face_nodes_;
   std::vector<Face> faces_;
-  double ramp_start_ = 0.0, ramp_duration_ = 0.0, last_accepted_ = 0.0;  // augmented: the offsets' ramp, s
+  double ramp_start_ = 0.0, ramp_duration_ = 0.0, last_update_ = 0.0;  // augmented: the offsets' ramp, s
 };
 
 }  // namespace needlefem::contact
