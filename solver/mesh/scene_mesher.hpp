@@ -61,5 +61,7 @@ SceneMeshInfo build_scene_mesh(const Case& c, const std::filesystem::path& msh_f
 int add_compliant_tip(const CompliantTip& tip);
 // curves a generated second-order mesh without inverting it; returns the passes that ran.
 std::string optimise_high_order();
+// makes the edges of every second-order tet still inverted straight; returns how many.
+std::size_t straighten_inverted_tets();
 
 }  // namespace needlefem
