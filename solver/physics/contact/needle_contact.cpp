@@ -6,6 +6,8 @@
 #include <limits>
 #include <map>
 
+#include <fmt/format.h>
+
 #include "case/case.hpp"
 #include "geometry/needle_tip.hpp"
 
@@ -19,6 +21,36 @@ const std::string kCavity = "cavity";
 double centroid_weight(int nodes_per_face, int a) {
   if (nodes_per_face == 3) return 1.0 / 3.0;
   return a < 3 ? -1.0 / 9.0 : 4.0 / 9.0;
+}
+
+// A user's mesh (scene.mesh_file) must have been meshed from the needle the needle.* keys describe:
+// otherwise the run would press one shape into the cavity of another, without a word. Its
+// cavity's vertices lie on the meshed needle's surface (any mesher puts them there; mid-edge
+// nodes may sit on chords), so they are checked against the sharp needle (the rounding of the
+// contact needle's edges is not meshed) at t = 0; a vertex off it by more than a thousandth of
+// the radius stops the run, naming the largest offset and where.
+void require_cavity_on_needle(const Case& input, const TetMesh& mesh, const PenaltyContact& contact,
+                              const BevelTip& tip, const NeedleMotion& motion) {
+  constexpr double kSharpEdge = 1e-12;  // m: the needle without its edge rounding
+  constexpr double kMmPerM = 1e3;
+  const RigidNeedle sharp(tip, motion, kSharpEdge);
+  const double tolerance = 1e-3 * tip.radius;
+  double largest = 0.0;
+  Point3 where{};
+  for (std::size_t f = 0; f < contact.face_count(); ++f)
+    for (int a = 0; a < 3; ++a) {
+      const Point3& X = mesh.nodes[contact.face_nodes(f)[a]];
+      const double gap = sharp.project(X, 0.0).gap;
+      if (std::abs(gap) > std::abs(largest)) largest = gap, where = X;
+    }
+  if (std::abs(largest) > tolerance)
+    throw input.error("scene.mesh_file",
+                      fmt::format("the cavity does not fit the needle of the needle.* keys: its vertex at ({:.3g}, "
+                                  "{:.3g}, {:.3g}) mm lies {:.3g} mm {} the needle's surface (tolerance {:.2g} mm); "
+                                  "mesh the scene from the same needle keys",
+                                  where[0] * kMmPerM, where[1] * kMmPerM, where[2] * kMmPerM,
+                                  std::abs(largest) * kMmPerM, largest > 0 ? "outside" : "inside",
+                                  tolerance * kMmPerM));
 }
 
 }  // namespace
@@ -39,6 +71,8 @@ NeedleContact::NeedleContact(const Case& input, const TetMesh& mesh, double refe
   parameters.reference_gap_offset = true;  // the cavity is meshed from the needle's shape
   smoothing_pressure_ = parameters.penalty_smoothing * reference_modulus;
   contact_ = std::make_shared<PenaltyContact>(mesh, kCavity, needle_, parameters);
+  if (!input.path("scene.mesh_file").empty())
+    require_cavity_on_needle(input, mesh, *contact_, tip.bevel, needle_->motion());
   std::map<int, std::pair<double, int>> penalty_sum;  // node -> (sum of face penalties, faces)
   for (std::size_t f = 0; f < contact_->face_count(); ++f)
     for (int a = 0; a < contact_->nodes_per_face(); ++a) {

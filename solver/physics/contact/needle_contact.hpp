@@ -6,7 +6,9 @@
 // needle_obstacle.hpp (bevel or rounded tip, insertion v t' e_z and rotation ω t' about z).
 // Gaps are measured from each quadrature point's own gap at t = 0 (reference_gap_offset): the
 // cavity is meshed from the needle's shape, so the undeformed tissue touches the needle exactly
-// and only the faceting of its curved faces (initial_gap(), reported) separates the two.
+// and only the faceting of its curved faces (initial_gap(), reported) separates the two. A user's
+// mesh (scene.mesh_file) is checked for that on construction: a cavity vertex off the needle's
+// (unrounded) surface by more than r/1000 stops the run with one line naming it.
 // contact.mode = "tied" keeps the earlier model instead (cavity nodes moved rigidly with the
 // needle by Dirichlet conditions, physics/mechanics/dirichlet.hpp) for comparison.
 //
