@@ -10,6 +10,11 @@ them against closed forms, and checks that bad group input is refused.
              of the drag the force on the plane has T/N = mu within 1e-3 (relative), and at the first
              output of the drag T/N < mu with the bottom's median node slide within the elastic slip
              of the return map (a sticking point's regularisation, penalty_contact.hpp).
+  punch      a rigid flat-ended punch (the needle obstacle) pressed into a bonded layer: at every
+             output time the force against Boussinesq's with the layer correction (indentation.py)
+             within --tolerance.
+  hertz      a rigid sphere likewise against Hertz's with Dimitriadis's layer correction, at the
+             full indentation (earlier times have too few elements across the contact).
   errors     cases naming a missing group, a volume group, a non-planar roller group, a mesh-scene
              key in the brain-tip scene: non-zero exit and one line naming the case file, the key
              and the group.
@@ -25,6 +30,7 @@ import sys
 import h5py
 import numpy as np
 
+import indentation
 import thick_walled
 
 failures = []
@@ -125,6 +131,43 @@ def sliding(args):
           f"{slide[0]:.2e} mm (<= elastic slip {elastic_slip:.2e} mm) while the top moved {slide[1]:.2e} mm")
 
 
+def indentation_forces(summary, out):
+    """Per output time: (time, the quarter model's force times 4, layer thickness in m)."""
+    material = summary["case"]["material"]
+    with open(out / "history.csv") as f:
+        rows = list(csv.DictReader(f))
+    with h5py.File(out / "result.h5", "r") as h5:
+        z = h5["/mesh/coordinates_mm"][:, 2]
+        faces = {name: np.unique(h5[f"/mesh/surfaces/{name}"][...].ravel()) for name in ("top", "base")}
+    thickness = (z[faces["base"]].mean() - z[faces["top"]].mean()) * 1e-3
+    shear = 2 * (material.get("c10_instantaneous_pa", 0.0) + material.get("c01_instantaneous_pa", 0.0))
+    # The indenter pushes along +z; the quarter model (rollers on x = 0, y = 0) carries a quarter.
+    forces = [(float(r["time_s"]), -4 * float(r["obstacle_force_z_n"])) for r in rows]
+    return forces, shear, material["bulk_modulus_pa"], thickness
+
+
+def indented(args, punch):
+    completed = run_to_the_end(args)
+    if not completed:
+        return
+    out, summary = completed
+    case = summary["case"]
+    forces, shear, bulk, thickness = indentation_forces(summary, out)
+    if punch:
+        radius = case["needle"]["radius_mm"] * 1e-3
+        speed = case["motion"]["insertion_speed_mm_per_s"] * 1e-3
+        reference = lambda t: indentation.flat_punch_force(shear, bulk, radius, speed * t, thickness)
+    else:
+        radius = case["obstacle"]["radius_mm"] * 1e-3
+        speed = case["obstacle"]["velocity_mm_per_s"][2] * 1e-3
+        reference = lambda t: indentation.sphere_force(shear, bulk, radius, speed * t, thickness)
+    checked = [(t, f) for t, f in forces if t > 0] if punch else forces[-1:]
+    for t, force in checked:
+        error = abs(force - reference(t)) / reference(t)
+        check(error <= args.tolerance, f"t = {t:g} s: depth {speed * t * 1e6:.3g} um, force {force:.6g} N, "
+              f"closed form {reference(t):.6g} N, rel. error {error:.2e} <= {args.tolerance:g}")
+
+
 def errors(args):
     source = pathlib.Path(args.case).resolve()
     work = pathlib.Path(args.out)
@@ -152,7 +195,7 @@ def errors(args):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("check", choices=["cylinder", "sphere", "sliding", "errors"])
+    parser.add_argument("check", choices=["cylinder", "sphere", "sliding", "punch", "hertz", "errors"])
     parser.add_argument("--exe", required=True)
     parser.add_argument("--case", required=True)
     parser.add_argument("--out", required=True)
@@ -162,6 +205,8 @@ def main():
         errors(args)
     elif args.check == "sliding":
         sliding(args)
+    elif args.check in ("punch", "hertz"):
+        indented(args, punch=args.check == "punch")
     else:
         pressure(args, sphere=args.check == "sphere")
     if failures:
