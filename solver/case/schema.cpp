@@ -109,11 +109,12 @@ std::vector<KeySpec> build_schema() {
            "false, a dead load on the reference area along the reference normal"),
       choice("obstacle.kind", "none", {"none", "plane", "sphere", "needle"},
              "Mesh scene: a rigid obstacle in frictional contact ([contact]) with obstacle.group: plane (solid "
-             "behind the plane), sphere (solid ball), needle (the [needle] tip moved by [motion], axis z through "
-             "the origin, rear face at z = 0, tip towards +z; physics/contact/scene_obstacle.hpp)"),
+             "behind the plane), sphere (solid ball), needle (the [needle] tip moved by [motion], axis along z, "
+             "tip towards +z, rear-face centre at obstacle.point_mm; physics/contact/scene_obstacle.hpp)"),
       text("obstacle.group", "", "Mesh scene: the surface group the obstacle touches"),
       reals("obstacle.point_mm", std::vector<double>{0, 0, 0}, 3, -1e4, 1e4,
-            "Plane or sphere obstacle: a point of the plane, or the sphere's centre, at t = 0"),
+            "Obstacle position at t = 0: a point of the plane, the sphere's centre, or the centre of the needle's "
+            "rear face"),
       reals("obstacle.normal", std::vector<double>{0, 0, 1}, 3, -1.0, 1.0,
             "Plane obstacle: its outward normal (towards the tissue; normalised)"),
       real("obstacle.radius_mm", 1.0, 0.0, 1e4, "Sphere obstacle: radius"),

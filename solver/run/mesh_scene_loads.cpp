@@ -37,7 +37,9 @@ MeshSceneLoads::MeshSceneLoads(const Case& input, const TetMesh& mesh, mechanics
 
 std::string MeshSceneLoads::history_header() const {
   return std::string(pressure_ ? ",pressure_pa" : "") +
-         (contact_ ? ",obstacle_force_x_n,obstacle_force_y_n,obstacle_force_z_n,obstacle_contact_area_mm2" : "");
+         (contact_ ? ",obstacle_force_x_n,obstacle_force_y_n,obstacle_force_z_n,obstacle_moment_x_n_m,"
+                     "obstacle_moment_y_n_m,obstacle_moment_z_n_m,obstacle_contact_area_mm2"
+                   : "");
 }
 
 std::string MeshSceneLoads::history_cells(double t, Vec y, Vec ydot) const {
@@ -46,8 +48,9 @@ std::string MeshSceneLoads::history_cells(double t, Vec y, Vec ydot) const {
   if (!contact_) return cells;
   const ReadArray state(y), rate(ydot);
   const contact::ContactResultant r = contact_->resultant(t, state.data(), rate.data(), system_.dof_map());
-  return cells + fmt::format(",{:.9g},{:.9g},{:.9g},{:.9g}", r.force_on_obstacle[0], r.force_on_obstacle[1],
-                             r.force_on_obstacle[2], r.contact_area * kMm2PerM2);
+  return cells + fmt::format(",{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}", r.force_on_obstacle[0],
+                             r.force_on_obstacle[1], r.force_on_obstacle[2], r.moment_on_obstacle[0],
+                             r.moment_on_obstacle[1], r.moment_on_obstacle[2], r.contact_area * kMm2PerM2);
 }
 
 }  // namespace needlefem::run

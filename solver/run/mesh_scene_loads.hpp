@@ -3,10 +3,12 @@
 // obstacle with obstacle.group (physics/contact/scene_obstacle.hpp), both registered as surface
 // loads of the mechanics system, and at every output time the history.csv columns
 //   pressure_pa                                  the pressure applied (with groups.pressure),
-//   obstacle_force_{x,y,z}_n, obstacle_contact_area_mm2
-//                                                force the tissue exerts on the obstacle and the
-//                                                reference area of obstacle.group in contact
-//                                                (with an obstacle).
+//   obstacle_force_{x,y,z}_n, obstacle_moment_{x,y,z}_n_m, obstacle_contact_area_mm2
+//                                                force the tissue exerts on the obstacle, its
+//                                                moment about the scene's origin (a needle's axis
+//                                                passes through it: z is the torque about the
+//                                                axis), and the reference area of obstacle.group
+//                                                in contact (with an obstacle).
 #pragma once
 
 #include <memory>

@@ -15,6 +15,11 @@ them against closed forms, and checks that bad group input is refused.
              within --tolerance.
   hertz      a rigid sphere likewise against Hertz's with Dimitriadis's layer correction, at the
              full indentation (earlier times have too few elements across the contact).
+  press-fit  a rigid rod pushed and turned through an undersized hole of a thick-walled tube: once
+             its cylinder covers the slice, the contact pressure (from the force on the rod across
+             the axis) against the tube's closed form at the interference (thick_walled.py), the
+             friction torque and the axial force per length against mu p 2 pi a^2 cos(phi) and
+             mu p 2 pi a sin(phi), tan(phi) = v / (omega a), all within --tolerance.
   errors     cases naming a missing group, a volume group, a non-planar roller group, a mesh-scene
              key in the brain-tip scene: non-zero exit and one line naming the case file, the key
              and the group.
@@ -168,6 +173,46 @@ def indented(args, punch):
               f"closed form {reference(t):.6g} N, rel. error {error:.2e} <= {args.tolerance:g}")
 
 
+def press_fit(args):
+    completed = run_to_the_end(args)
+    if not completed:
+        return
+    out, summary = completed
+    case = summary["case"]
+    material = case["material"]
+    constants = {k: material.get(f"{k}_instantaneous_pa", 0.0) for k in ("c10", "c01", "c20", "c11", "c02")}
+    with h5py.File(out / "result.h5", "r") as h5:
+        X = h5["/mesh/coordinates_mm"][()]
+        group = lambda name: np.unique(h5[f"/mesh/surfaces/{name}"][...].ravel())
+        hole, outer = (np.linalg.norm(X[group(name), :2], axis=1).mean() for name in ("inner", "outer"))
+        length = (X[group("z1"), 2].mean() - X[group("z0"), 2].mean()) * 1e-3
+    rod = case["needle"]["radius_mm"]
+    pressure = thick_walled.internal_pressure(constants, hole, outer, rod / hole, sphere=False)
+    a = rod * 1e-3
+    speed = case["motion"]["insertion_speed_mm_per_s"] * 1e-3
+    spin = np.radians(case["motion"]["rotation_speed_deg_per_s"])
+    phi = np.arctan2(speed, spin * a)
+    mu = case["contact"]["friction_coefficient"]
+    references = {"pressure_pa": pressure, "torque_n_m_per_m": mu * pressure * 2 * np.pi * a * a * np.cos(phi),
+                  "axial_force_n_per_m": mu * pressure * 2 * np.pi * a * np.sin(phi)}
+    # The rod's rounded end has passed the slice once its cylinder reaches the far end face: the
+    # last half second of the motion.
+    steady_from = case["motion"]["duration_s"] - 0.5
+    with open(out / "history.csv") as f:
+        rows = [r for r in csv.DictReader(f) if float(r["time_s"]) >= steady_from - 1e-9]
+    for row in rows:
+        force = [float(row[f"obstacle_force_{c}_n"]) for c in "xyz"]
+        # On the quarter (rollers on x = 0 and y = 0) a uniform pressure p pushes the rod by -p a L
+        # along x and along y, and the hoop friction adds and takes the same from the two.
+        measured = {"pressure_pa": -(force[0] + force[1]) / (2 * a * length),
+                    "torque_n_m_per_m": -4 * float(row["obstacle_moment_z_n_m"]) / length,
+                    "axial_force_n_per_m": -4 * force[2] / length}
+        for name, reference in references.items():
+            error = abs(measured[name] - reference) / reference
+            check(error <= args.tolerance, f"t = {row['time_s']} s: {name} {measured[name]:.6g} against "
+                  f"{reference:.6g}, rel. error {error:.2e} <= {args.tolerance:g}")
+
+
 def errors(args):
     source = pathlib.Path(args.case).resolve()
     work = pathlib.Path(args.out)
@@ -195,7 +240,7 @@ def errors(args):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("check", choices=["cylinder", "sphere", "sliding", "punch", "hertz", "errors"])
+    parser.add_argument("check", choices=["cylinder", "sphere", "sliding", "punch", "hertz", "press-fit", "errors"])
     parser.add_argument("--exe", required=True)
     parser.add_argument("--case", required=True)
     parser.add_argument("--out", required=True)
@@ -205,6 +250,8 @@ def main():
         errors(args)
     elif args.check == "sliding":
         sliding(args)
+    elif args.check == "press-fit":
+        press_fit(args)
     elif args.check in ("punch", "hertz"):
         indented(args, punch=args.check == "punch")
     else:

@@ -33,8 +33,10 @@ std::shared_ptr<const RigidObstacle> scene_obstacle(const Case& input) {
     const NeedleTip tip = needle_tip_from_case(input);
     if (tip.kind != NeedleTip::Kind::Bevel)
       throw input.error("obstacle.kind", "a needle obstacle must be convex (needle.kind = \"bevel\")");
-    return std::make_shared<RigidNeedle>(tip.bevel, needle_motion_from_case(input),
-                                         input.real("needle.edge_radius_um") * kMetresPerUm);
+    return std::make_shared<OffsetObstacle>(
+        std::make_shared<RigidNeedle>(tip.bevel, needle_motion_from_case(input),
+                                      input.real("needle.edge_radius_um") * kMetresPerUm),
+        point_in_metres(input, "obstacle.point_mm"));
   }
   return nullptr;
 }

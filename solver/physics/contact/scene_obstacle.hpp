@@ -6,9 +6,9 @@
 //           (TranslatingSphere);
 //   both translating at obstacle.velocity_mm_per_s;
 //   needle  the rigid needle of [needle] (bevel tip; bevel_deg = 90 and fillet_mm = 0 make a
-//           flat-ended punch) moved by [motion] (needle_obstacle.hpp), in the scene frame: axis z
-//           through the origin, rear face at z = 0, tip towards +z. The mesh places the body
-//           against it.
+//           flat-ended punch, fillet_mm = radius_mm a round-ended rod) moved by [motion]
+//           (needle_obstacle.hpp): axis along z, tip towards +z, the centre of its rear face at
+//           obstacle.point_mm at t = 0 (OffsetObstacle).
 #pragma once
 
 #include <memory>
