@@ -7,6 +7,7 @@
 #include <fmt/ranges.h>
 
 #include "case/case.hpp"
+#include "case/schema.hpp"
 #include "model/read_msh.hpp"
 
 namespace needlefem {
@@ -39,15 +40,17 @@ void require_scene_groups(const Case& c, const TetMesh& mesh) {
 }
 
 // Keys that only the mesh scene reads: given in another scene, they would be ignored silently.
+bool mesh_scene_key(const std::string& key) {
+  for (const char* prefix : {"groups.", "displacement.", "pressure.", "obstacle.", "loading.history_"})
+    if (key.rfind(prefix, 0) == 0) return true;
+  return false;
+}
+
 void require_mesh_scene_keys_unused(const Case& c) {
-  std::vector<std::string> keys = kGroupListKeys;
-  keys.insert(keys.end(), {"obstacle.kind", "obstacle.group", "pressure.value_pa", "displacement.gradient",
-                           "displacement.translation_mm", "displacement.translation_history_mm",
-                           "loading.history_time_s"});
-  for (const auto& key : keys)
-    if (c.given(key))
-      throw c.error(key, fmt::format("applies to scene.kind = \"mesh\" only (this case's is \"{}\")",
-                                     c.text("scene.kind")));
+  for (const auto& spec : case_schema())
+    if (mesh_scene_key(spec.key) && c.given(spec.key))
+      throw c.error(spec.key, fmt::format("applies to scene.kind = \"mesh\" only (this case's is \"{}\")",
+                                          c.text("scene.kind")));
 }
 
 }  // namespace

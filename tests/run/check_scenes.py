@@ -4,7 +4,8 @@ them against closed forms, and checks that bad group input is refused.
 
   cylinder   thick-walled tube (plane strain, roller ends) under internal follower pressure:
              at every output time the applied pressure against the closed-form pressure of the
-             incompressible solid at the measured inner stretch (thick_walled.py), within --tolerance.
+             incompressible solid at the measured inner stretch (thick_walled.py), within --tolerance;
+             and the mesh.msh the .geo gave, run again as the user's .msh, gives the same result.
   sphere     the hollow sphere likewise.
   sliding    a block pressed on a rigid plane, then dragged (Coulomb friction mu): over the last half
              of the drag the force on the plane has T/N = mu within 1e-3 (relative), and at the first
@@ -20,9 +21,10 @@ them against closed forms, and checks that bad group input is refused.
              the axis) against the tube's closed form at the interference (thick_walled.py), the
              friction torque and the axial force per length against mu p 2 pi a^2 cos(phi) and
              mu p 2 pi a sin(phi), tan(phi) = v / (omega a), all within --tolerance.
-  errors     cases naming a missing group, a volume group, a non-planar roller group, a mesh-scene
-             key in the brain-tip scene: non-zero exit and one line naming the case file, the key
-             and the group.
+  errors     cases naming a missing group, a volume group, a non-planar roller group, an obstacle
+             without its group, a load history whose lists differ in length, a mesh-scene key in the
+             brain-tip scene: non-zero exit and one line naming the case file, the key and the
+             culprit.
 """
 import argparse
 import csv
@@ -98,6 +100,13 @@ def pressure(args, sphere):
               f"t index {k}: inner stretch {stretch:.5f} (spread {np.ptp(stretches):.1e}), applied {p:.6g} Pa, "
               f"closed form {reference:.6g} Pa, rel. error {error:.2e} <= {args.tolerance:g}")
     print(f"largest relative pressure error {worst:.3e}")
+    # The mesh the .geo gave, read back as the user's .msh: the same run.
+    again = run(args.exe, args.case, out / "from_msh", ["--set", f"scene.mesh_file={(out / 'mesh.msh').resolve()}"])
+    check(again.returncode == 0, f"the run from the written mesh.msh completes (exit {again.returncode})")
+    if again.returncode == 0:
+        with h5py.File(out / "from_msh" / "result.h5", "r") as h5:
+            difference = np.abs(h5["/series/node/displacement"][()] - u).max()
+        check(difference <= 1e-12 * np.abs(u).max(), f"... with the same displacements (largest difference {difference:.1e} mm)")
 
 
 def sliding(args):
@@ -227,6 +236,8 @@ def errors(args):
         "curved_roller": (text.replace('roller = ["x0", "y0", "z0", "z1"]', 'roller = ["x0", "y0", "z0", "outer"]'),
                           "groups.roller", "outer"),
         "no_obstacle_group": (text + '\n[obstacle]\nkind = "plane"\n', "obstacle.group", "plane"),
+        "short_history": (text.replace("ramp_s = 1.0", "history_time_s = [0.0, 1.0]\nhistory_factor = [0.0, 0.5, 1.0]"),
+                          "loading.history_factor", "history_time_s"),
         "brain_tip_groups": ('[groups]\nfixed = ["x_min"]\n', "groups.fixed", "mesh"),
     }
     for name, (case_text, key, word) in bad.items():
