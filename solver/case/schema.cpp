@@ -79,9 +79,10 @@ std::vector<KeySpec> build_schema() {
              "([groups], [displacement], [pressure], [obstacle])"),
       text("scene.mesh_file", "",
            "brain-tip: a user-supplied gmsh .msh (millimetres; tets of the order mesh.order gives) with the same "
-           "physical names, used instead of generating one. mesh: required; a .msh as above, or a gmsh .geo that "
-           "needlefem meshes at mesh.order with its sizes halved per mesh.refinement_level; it needs a physical "
-           "volume \"tissue\" and names the surface groups the conditions use. Relative to the case file"),
+           "physical names, used instead of generating one. mesh: required; a .msh (millimetres, tets of order "
+           "mesh.order) or a gmsh .geo that needlefem meshes at mesh.order with its sizes halved per "
+           "mesh.refinement_level; either needs a physical volume \"tissue\" and the surface groups the conditions "
+           "name. Relative to the case file"),
 
       // --- conditions on the named surface groups of the mesh scene (physics/mechanics/dirichlet.hpp)
       names("groups.fixed", "Mesh scene: surface groups held fixed (u = 0)"),
