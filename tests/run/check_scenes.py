@@ -64,6 +64,11 @@ def run_to_the_end(args):
     return out, json.loads((out / "summary.json").read_text())
 
 
+def polynomial_constants(material):
+    """The custom preset's coefficients of the echoed [material] (absent ones are 0)."""
+    return {k: material.get(f"{k}_instantaneous_pa", 0.0) for k in ("c10", "c01", "c20", "c11", "c02")}
+
+
 def pressure(args, sphere):
     # The quadrature of the closed form against its hand-integrated neo-Hookean case.
     neo_hookean = {"c10": 0.5, "c01": 0.0, "c20": 0.0, "c11": 0.0, "c02": 0.0}
@@ -75,8 +80,7 @@ def pressure(args, sphere):
     if not completed:
         return
     out, summary = completed
-    material = summary["case"]["material"]
-    constants = {k: material.get(f"{k}_instantaneous_pa", 0.0) for k in ("c10", "c01", "c20", "c11", "c02")}
+    constants = polynomial_constants(summary["case"]["material"])
     with open(out / "history.csv") as f:
         applied = [float(row["pressure_pa"]) for row in csv.DictReader(f)]
     with h5py.File(out / "result.h5", "r") as h5:
@@ -188,8 +192,7 @@ def press_fit(args):
         return
     out, summary = completed
     case = summary["case"]
-    material = case["material"]
-    constants = {k: material.get(f"{k}_instantaneous_pa", 0.0) for k in ("c10", "c01", "c20", "c11", "c02")}
+    constants = polynomial_constants(case["material"])
     with h5py.File(out / "result.h5", "r") as h5:
         X = h5["/mesh/coordinates_mm"][()]
         group = lambda name: np.unique(h5[f"/mesh/surfaces/{name}"][...].ravel())
