@@ -20,7 +20,7 @@
 
 namespace needlefem {
 
-using Value = std::variant<double, long, bool, std::string, std::vector<double>>;
+using Value = std::variant<double, long, bool, std::string, std::vector<double>, std::vector<std::string>>;
 
 struct Case::Values {
   std::map<std::string, Value> values;
@@ -107,6 +107,17 @@ class Checker {
                                      : std::string("expected a non-empty list"));
         std::vector<double> out;
         for (const auto& element : *a) out.push_back(number(key, element, spec));
+        return out;
+      }
+      case KeyType::TextList: {
+        auto a = node.as_array();
+        if (!a) fail(key, fmt::format("expected a list of strings, got {}", node_type_name(node)));
+        std::vector<std::string> out;
+        for (const auto& element : *a) {
+          auto s = element.as_string();
+          if (!s) fail(key, fmt::format("expected a list of strings, got {} in it", node_type_name(element)));
+          out.push_back(s->get());
+        }
         return out;
       }
     }
@@ -268,6 +279,9 @@ std::string Case::text(const std::string& key) const { return typed<std::string>
 std::vector<double> Case::reals(const std::string& key) const {
   return typed<std::vector<double>>(values_->values, key);
 }
+std::vector<std::string> Case::texts(const std::string& key) const {
+  return typed<std::vector<std::string>>(values_->values, key);
+}
 bool Case::has(const std::string& key) const { return values_->values.count(key) > 0; }
 std::optional<double> Case::maybe_real(const std::string& key) const {
   if (!has(key)) return std::nullopt;
@@ -311,9 +325,9 @@ std::string Case::to_toml() const {
     std::visit(
         [&](const auto& v) {
           using T = std::decay_t<decltype(v)>;
-          if constexpr (std::is_same_v<T, std::vector<double>>) {
+          if constexpr (std::is_same_v<T, std::vector<double>> || std::is_same_v<T, std::vector<std::string>>) {
             toml::array array;
-            for (double x : v) array.push_back(x);
+            for (const auto& x : v) array.push_back(x);
             table->insert(leaf, std::move(array));
           } else if constexpr (std::is_same_v<T, long>) {
             table->insert(leaf, static_cast<int64_t>(v));

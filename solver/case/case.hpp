@@ -52,6 +52,7 @@ class Case {
   bool flag(const std::string& key) const;
   std::string text(const std::string& key) const;
   std::vector<double> reals(const std::string& key) const;
+  std::vector<std::string> texts(const std::string& key) const;
   // Keys without a default (optional) may be absent.
   bool has(const std::string& key) const;
   std::optional<double> maybe_real(const std::string& key) const;

@@ -55,6 +55,10 @@ KeySpec reals(std::string key, KeyDefault fallback, std::size_t length, double m
   return s;
 }
 
+KeySpec names(std::string key, std::string help) {
+  return make(std::move(key), KeyType::TextList, std::vector<std::string>{}, std::move(help));
+}
+
 const std::vector<std::string> kFaceConditions{"free", "fixed", "roller", "normal-displacement", "displacement"};
 
 KeySpec face(const std::string& name, const std::string& fallback) {
@@ -68,12 +72,55 @@ KeySpec face(const std::string& name, const std::string& fallback) {
 std::vector<KeySpec> build_schema() {
   return {
       // --- scene --------------------------------------------------------------------------
-      choice("scene.kind", "brain-tip", {"brain-tip", "block"},
+      choice("scene.kind", "brain-tip", {"brain-tip", "block", "mesh"},
              "brain-tip: tissue cube with a needle tip immersed at the entry face (paper 001); "
-             "block: a box with per-face conditions for homogeneous verification problems"),
+             "block: a box with per-face conditions for homogeneous verification problems; "
+             "mesh: the user's gmsh mesh (scene.mesh_file) with conditions on its named surface groups "
+             "([groups], [displacement], [pressure], [obstacle])"),
       text("scene.mesh_file", "",
-           "A user-supplied gmsh .msh (millimetres; tets of the order mesh.order gives) with the same physical names, "
-           "used instead of generating one; relative to the case file"),
+           "brain-tip: a user-supplied gmsh .msh (millimetres; tets of the order mesh.order gives) with the same "
+           "physical names, used instead of generating one. mesh: required; a .msh (millimetres, tets of order "
+           "mesh.order) or a gmsh .geo that needlefem meshes at mesh.order with its sizes halved per "
+           "mesh.refinement_level; either needs a physical volume \"tissue\" and the surface groups the conditions "
+           "name. Relative to the case file"),
+
+      // --- conditions on the named surface groups of the mesh scene (physics/mechanics/dirichlet.hpp)
+      names("groups.fixed", "Mesh scene: surface groups held fixed (u = 0)"),
+      names("groups.roller",
+            "Mesh scene: surface groups that may slide in their plane (u.n = 0); each must be a plane x, y or z = "
+            "const. Symmetry planes, and the end faces of a long body, which then deforms in plane strain"),
+      names("groups.displaced",
+            "Mesh scene: surface groups moved by u = s(t) (F - I) X + d(t) (displacement.gradient, "
+            "displacement.translation_mm or translation_history_mm, the load factor of [loading])"),
+      names("groups.pressure",
+            "Mesh scene: surface groups loaded by the pressure s(t) pressure.value_pa (positive pushes into the "
+            "tissue)"),
+      reals("displacement.gradient", std::vector<double>{1, 0, 0, 0, 1, 0, 0, 0, 1}, 9, -100.0, 100.0,
+            "Mesh scene: final deformation gradient F (row-major) of the affine part s(t) (F - I) X of the "
+            "displaced groups' motion"),
+      reals("displacement.translation_mm", std::vector<double>{0, 0, 0}, 3, -1e4, 1e4,
+            "Mesh scene: final translation d of the displaced groups, reached as s(t) d"),
+      reals("displacement.translation_history_mm", std::monostate{}, 0, -1e4, 1e4,
+            "Mesh scene: translation of the displaced groups at each loading.history_time_s (x, y, z per time; "
+            "linear in between), instead of displacement.translation_mm"),
+      real("pressure.value_pa", 0.0, -1e12, 1e12, "Mesh scene: final pressure on groups.pressure, reached as s(t) p",
+           false),
+      flag("pressure.follower", true,
+           "Mesh scene: true, the pressure acts on the deformed area along the deformed normal (a fluid's); "
+           "false, a dead load on the reference area along the reference normal"),
+      choice("obstacle.kind", "none", {"none", "plane", "sphere", "needle"},
+             "Mesh scene: a rigid obstacle in frictional contact ([contact]) with obstacle.group: plane (solid "
+             "behind the plane), sphere (solid ball), needle (the [needle] tip moved by [motion], axis along z, "
+             "tip towards +z, rear-face centre at obstacle.point_mm; physics/contact/scene_obstacle.hpp)"),
+      text("obstacle.group", "", "Mesh scene: the surface group the obstacle touches"),
+      reals("obstacle.point_mm", std::vector<double>{0, 0, 0}, 3, -1e4, 1e4,
+            "Obstacle position at t = 0: a point of the plane, the sphere's centre, or the centre of the needle's "
+            "rear face"),
+      reals("obstacle.normal", std::vector<double>{0, 0, 1}, 3, -1.0, 1.0,
+            "Plane obstacle: its outward normal (towards the tissue; normalised)"),
+      real("obstacle.radius_mm", 1.0, 0.0, 1e4, "Sphere obstacle: radius"),
+      reals("obstacle.velocity_mm_per_s", std::vector<double>{0, 0, 0}, 3, -1e6, 1e6,
+            "Plane or sphere obstacle: velocity of its translation"),
 
       // --- tissue cube of the brain-tip scene -------------------------------------------------
       real("tissue.cube_edge_mm", 12.0, 0.0, 1000.0, "Edge of the tissue cube; the entry face is z = 0"),
@@ -150,8 +197,16 @@ std::vector<KeySpec> build_schema() {
       real("motion.ramp_s", 0.0, 0.0, 1e6,
            "Start ramp: the speeds rise smoothly from 0 over this time (smoothstep; the travel loses "
            "speed * ramp / 2). 0 = full speed at t = 0 as in the paper (geometry/needle_motion.hpp)", false),
-      real("loading.ramp_s", 1.0, 0.0, 1e6, "Block: time over which the applied field rises linearly to F"),
-      real("loading.hold_s", 0.0, 0.0, 1e6, "Block: time the applied field is then held", false),
+      real("loading.ramp_s", 1.0, 0.0, 1e6,
+           "Block and mesh scenes: time over which the load factor s(t) rises linearly from 0 to 1"),
+      real("loading.hold_s", 0.0, 0.0, 1e6,
+           "Block and mesh scenes: time the loads are then held (after the last loading.history_time_s if given)",
+           false),
+      reals("loading.history_time_s", std::monostate{}, 0, 0.0, 1e6,
+            "Mesh scene: times (from 0, increasing) of a piecewise-linear load history, instead of the ramp"),
+      reals("loading.history_factor", std::monostate{}, 0, -1e6, 1e6,
+            "Mesh scene: the load factor s at each loading.history_time_s (scales displacement.gradient, "
+            "displacement.translation_mm and pressure.value_pa)"),
 
       // --- tissue material (physics/material) ------------------------------------------------
       // Hyperelastic constants are INSTANTANEOUS moduli (the elastic response before any Prony
@@ -271,7 +326,8 @@ std::vector<KeySpec> build_schema() {
       // --- outputs of `needlefem run` (solver/run) ----------------------------------------------
       real("output.interval_s", 0.01, 0.0, 1e6,
            "Time between output times (fields, maxima, reactions); the history ends at motion.duration_s "
-           "(brain-tip) or loading.ramp_s + loading.hold_s (block), which is always an output time"),
+           "(brain-tip) or loading.ramp_s (or the last loading.history_time_s) + loading.hold_s (block, mesh), which is "
+           "always an output time"),
       real("output.density_kg_per_m3", 1040.0, 0.0, 1e6,
            "Tissue density, used only to report the kinetic energy the quasi-static model neglects "
            "(brain: 1040)"),
@@ -442,6 +498,7 @@ std::string type_name(const KeySpec& spec) {
     case KeyType::Choice: return fmt::format("{}", fmt::join(spec.choices, "|"));
     case KeyType::RealList:
       return spec.list_length ? fmt::format("{} reals", spec.list_length) : std::string("list of reals");
+    case KeyType::TextList: return "list of strings";
   }
   return "";
 }
@@ -454,6 +511,7 @@ std::string default_text(const KeyDefault& value) {
         else if constexpr (std::is_same_v<T, bool>) return v ? "true" : "false";
         else if constexpr (std::is_same_v<T, std::string>) return v.empty() ? "\"\"" : "\"" + v + "\"";
         else if constexpr (std::is_same_v<T, std::vector<double>>) return fmt::format("[{}]", fmt::join(v, ", "));
+        else if constexpr (std::is_same_v<T, std::vector<std::string>>) return fmt::format("{}", v);
         else return fmt::format("{}", v);
       },
       value);

@@ -9,10 +9,11 @@
 
 namespace needlefem {
 
-enum class KeyType { Real, Integer, Flag, Text, Choice, RealList };
+enum class KeyType { Real, Integer, Flag, Text, Choice, RealList, TextList };
 
 // A default value; monostate marks an optional key without default.
-using KeyDefault = std::variant<std::monostate, double, long, bool, std::string, std::vector<double>>;
+using KeyDefault =
+    std::variant<std::monostate, double, long, bool, std::string, std::vector<double>, std::vector<std::string>>;
 
 struct KeySpec {
   std::string key;                  // dotted: "needle.radius_mm"

@@ -542,6 +542,23 @@ SceneMeshInfo mesh_block(const Case& c, const std::filesystem::path& msh_file) {
   return info;
 }
 
+// The mesh scene's user geometry (a gmsh .geo in millimetres, with its physical groups and
+// element sizes), meshed at mesh.order with every size scaled by 2^-mesh.refinement_level.
+SceneMeshInfo mesh_user_geometry(const Case& c, const std::filesystem::path& msh_file) {
+  const auto geo = c.path("scene.mesh_file");
+  try {
+    gmsh::open(geo.string());
+  } catch (const std::string& message) {
+    throw c.error("scene.mesh_file", fmt::format("gmsh cannot read '{}': {}", geo.string(), message));
+  }
+  gmsh::option::setNumber("Mesh.MeshSizeFactor", level_factor(c));
+  set_mesh_options(c);
+  SceneMeshInfo info;
+  info.grading.refinement_level = static_cast<int>(c.integer("mesh.refinement_level"));
+  info.high_order_optimisation = generate_and_write(c, msh_file);
+  return info;
+}
+
 }  // namespace
 
 SceneMeshInfo build_scene_mesh(const Case& c, const std::filesystem::path& msh_file, std::FILE* progress) {
@@ -556,7 +573,10 @@ SceneMeshInfo build_scene_mesh(const Case& c, const std::filesystem::path& msh_f
     const auto start = std::chrono::steady_clock::now();
     GmshSession session("needlefem");
     GmshSession::guarded([&] {
-      info = c.text("scene.kind") == "block" ? mesh_block(c, msh_file) : mesh_brain_tip(c, msh_file);
+      const std::string kind = c.text("scene.kind");
+      info = kind == "block" ? mesh_block(c, msh_file)
+             : kind == "mesh" ? mesh_user_geometry(c, msh_file)
+                              : mesh_brain_tip(c, msh_file);
     });
     info.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   });

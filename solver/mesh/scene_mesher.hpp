@@ -8,6 +8,7 @@
 //            faces touching the needle tip), "needle_rear" (rear face of the tip, z = 0),
 //            "needle_surface" (the whole boundary of the meshed tip, when needle.mesh_volume)
 //            block: "x_min" ... "z_max"
+//   mesh scene: those of the user's .geo (scene.mesh_file), which needs a volume "tissue"
 #pragma once
 
 #include <cstddef>

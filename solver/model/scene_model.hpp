@@ -15,16 +15,18 @@ class Case;
 
 struct SceneModel {
   TetMesh mesh;
-  SceneMeshInfo info;      // CAD facts (zero for a user-supplied mesh)
+  SceneMeshInfo info;      // CAD facts (zero for a user-supplied mesh or geometry)
   MeshQuality quality;
   std::filesystem::path msh_file;
   bool user_mesh = false;
 };
 
-// Meshes the scene into out_dir/mesh.msh (or reads scene.mesh_file), saying so on `progress`
-// (build_scene_mesh; nullptr: silent). Throws CaseError for bad input and std::runtime_error for
-// meshing failures; inverted elements are reported in `quality`, and require_valid_elements()
-// turns them into an error.
+// Meshes the scene into out_dir/mesh.msh (or reads scene.mesh_file; a .geo of the mesh scene is
+// meshed there too), saying so on `progress` (build_scene_mesh; nullptr: silent). Throws CaseError
+// for bad input (also: a group the mesh scene's keys name that is not a surface group of the
+// mesh, and mesh-scene keys given in another scene) and std::runtime_error for meshing failures;
+// inverted elements are reported in `quality`, and require_valid_elements() turns them into an
+// error.
 SceneModel load_scene_model(const Case& c, const std::filesystem::path& out_dir, std::FILE* progress);
 void require_valid_elements(const SceneModel& scene);
 

@@ -5,16 +5,12 @@
 #include <fmt/format.h>
 
 #include "case/case.hpp"
+#include "physics/mechanics/load_history.hpp"
 
 namespace needlefem::run {
 
-double history_end(const Case& c) {
-  if (c.text("scene.kind") == "block") return c.real("loading.ramp_s") + c.real("loading.hold_s");
-  return c.real("motion.duration_s");
-}
-
 std::vector<double> output_times(const Case& c) {
-  const double end = history_end(c), interval = c.real("output.interval_s");
+  const double end = mechanics::history_end(c), interval = c.real("output.interval_s");
   // Every output time writes every field: 1e4 of them is already gigabytes on a fine mesh, and
   // 1e-9 s over 0.1 s once wrote hundreds of MB of metadata alone.
   constexpr double max_output_times = 1e4;

@@ -31,6 +31,7 @@
 #include "physics/material/material.hpp"
 #include "physics/mechanics/dirichlet.hpp"
 #include "physics/mechanics/mechanics_system.hpp"
+#include "run/mesh_scene_loads.hpp"
 #include "run/needle_output.hpp"
 #include "run/output_schedule.hpp"
 #include "run/safety_report.hpp"
@@ -250,6 +251,7 @@ nlohmann::json run_case(const Case& c, const RunOptions& options) {
   std::unique_ptr<SceneModel> scene;
   std::unique_ptr<material::Material> material;
   std::unique_ptr<NeedleOutput> needle;
+  std::unique_ptr<MeshSceneLoads> scene_loads;
   std::unique_ptr<SafetyReport> safety;
   // A stop request (options.stop) ends the run after the step in progress, keeping every
   // completed output time.
@@ -271,6 +273,7 @@ nlohmann::json run_case(const Case& c, const RunOptions& options) {
     material = std::make_unique<material::Material>(material::material_from_case(c));
     const auto system = mechanics::MechanicsSystem::from_case(c, mesh);
     needle = NeedleOutput::attach(c, mesh, *system, material->instantaneous_shear_modulus());
+    scene_loads = MeshSceneLoads::attach(c, mesh, *system, material->instantaneous_shear_modulus());
     // The needle's PETSc solvers go before the session does, also when the run fails.
     const struct ReleaseNeedleSolvers {
       NeedleOutput* needle;
@@ -288,7 +291,8 @@ nlohmann::json run_case(const Case& c, const RunOptions& options) {
     if (needle) for (auto& spec : NeedleOutput::field_specs()) specs.push_back(std::move(spec));
     output::ResultFile file(options.out_dir / "result.h5", mesh, c.to_toml(), specs, times.size());
     HistoryCsv history(options.out_dir / "history.csv", record.surfaces,
-                       safety->history_header() + (needle ? NeedleOutput::history_header() : ""));
+                       safety->history_header() + (needle ? NeedleOutput::history_header() : "") +
+                           (scene_loads ? scene_loads->history_header() : ""));
     std::array<std::vector<double>, kScalarQuantities> max_over_time;
     for (auto& cells : max_over_time) cells.assign(mesh.tet_count(), 0.0);
 
@@ -376,7 +380,8 @@ nlohmann::json run_case(const Case& c, const RunOptions& options) {
       record_solver_counts();
       safety->add_time(t, f);
       history.row(t, record.counters, f, record.reactions, record.elastic_energy_j,
-                  safety->history_cells() + (needle ? needle->history_cells() : ""));
+                  safety->history_cells() + (needle ? needle->history_cells() : "") +
+                      (scene_loads ? scene_loads->history_cells(t, integrator.state(), integrator.state_rate()) : ""));
       record.output_s += seconds_since(output_start);
       record.integration_s = integration_s;
       // By the first output every solver has been set up and has solved (the initial-rates

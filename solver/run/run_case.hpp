@@ -3,7 +3,9 @@
 //   to every output time (run/output_schedule) -> at each time the tissue fields
 //   (physics/fields) appended to DIR/result.h5 + .xdmf, a row of DIR/history.csv (per-time
 //   maxima with positions, reaction force per named boundary surface, elastic and kinetic
-//   energy) and a progress line on `progress`; finally DIR/summary.json (written atomically).
+//   energy; the needle's loads, run/needle_output.hpp; the mesh scene's pressure and obstacle
+//   loads, run/mesh_scene_loads.hpp) and a progress line on `progress`; finally
+//   DIR/summary.json (written atomically).
 // A failure (IDA giving up, an inverted element, a full disk) leaves every completed output
 // time readable in result.h5/.xdmf and history.csv (the XDMF lists exactly the times result.h5
 // counts as complete), writes summary.json with "status": "failed" (or "interrupted") and the

@@ -88,7 +88,7 @@ class SweepFile {
     std::vector<Axis> out;
     for (const auto& [name, value] : entries(*node->as_table(), where + ".")) {
       const toml::array* list = value->as_array();
-      if (find_key(name)->type == KeyType::RealList)
+      if (const KeyType type = find_key(name)->type; type == KeyType::RealList || type == KeyType::TextList)
         fail(where + "." + name, "is a list key; only scalar keys can be swept");
       if (!list || list->empty()) fail(where + "." + name, "expected a non-empty list of values");
       for (const auto& element : *list)

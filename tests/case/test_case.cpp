@@ -54,6 +54,18 @@ TEST(Case, WrongTypeIsRejected) {
   EXPECT_NE(error_of("[block]\nsize_mm = [1, 2]\n").find("expected 3 numbers, got 2"), std::string::npos);
   EXPECT_NE(error_of("[needle]\nkind = \"spoon\"\n").find("'spoon' is not one of: bevel, compliant"), std::string::npos);
   EXPECT_NE(error_of("needle = 3\n").find("unknown key"), std::string::npos);
+  EXPECT_NE(error_of("[groups]\nfixed = \"base\"\n").find("expected a list of strings, got a string"),
+            std::string::npos);
+  EXPECT_NE(error_of("[groups]\nfixed = [\"base\", 2]\n").find("got an integer in it"), std::string::npos);
+}
+
+TEST(Case, ListsOfGroupNamesAreReadAndEchoed) {
+  const Case c = Case::parse("[groups]\nroller = [\"x0\", \"z1\"]\n", "a.toml");
+  EXPECT_EQ(c.texts("groups.roller"), (std::vector<std::string>{"x0", "z1"}));
+  EXPECT_TRUE(c.texts("groups.fixed").empty());
+  EXPECT_EQ(Case::parse(c.to_toml(), "echo.toml").texts("groups.roller"), c.texts("groups.roller"));
+  EXPECT_EQ(Case::parse("", "a.toml", {"groups.pressure=[\"inner\"]"}).texts("groups.pressure"),
+            std::vector<std::string>{"inner"});
 }
 
 TEST(Case, OutOfRangeIsRejectedWithTheRange) {

@@ -8,47 +8,19 @@
 #include <fmt/format.h>
 
 #include "case/case.hpp"
+#include "physics/elements/triangle_face.hpp"
+#include "physics/mechanics/load_history.hpp"
 
 namespace needlefem::contact {
 
 namespace {
 
+using elements::kTriangleRule;
+using elements::triangle_shape;
 constexpr double kMetresPerMm = 1e-3;
 // Augmented enforcement: at most this many multiplier updates over the motion (see
 // ContactParameters::multiplier_update_interval).
 constexpr double kMultiplierUpdatesPerMotion = 1000.0;
-
-// Dunavant (1985) 6-point, degree-4 rule on the reference triangle (area 1/2): (L1, L2, weight).
-struct TrianglePoint {
-  double xi, eta, weight;
-};
-constexpr double kA = 0.445948490915965, kB = 0.091576213509771;
-constexpr double kWa = 0.5 * 0.223381589678011, kWb = 0.5 * 0.109951743655322;
-constexpr std::array<TrianglePoint, 6> kTriangleRule{{{kA, kA, kWa},
-                                                      {1.0 - 2.0 * kA, kA, kWa},
-                                                      {kA, 1.0 - 2.0 * kA, kWa},
-                                                      {kB, kB, kWb},
-                                                      {1.0 - 2.0 * kB, kB, kWb},
-                                                      {kB, 1.0 - 2.0 * kB, kWb}}};
-
-// TRI3 / TRI6 shape functions and their (ξ, η) derivatives; L0 = 1 - ξ - η, L1 = ξ, L2 = η;
-// TRI6 edge nodes (0,1) (1,2) (2,0).
-void triangle_shape(int nodes, double xi, double eta, double* N, double* dN_dxi, double* dN_deta) {
-  const double l0 = 1.0 - xi - eta, l1 = xi, l2 = eta;
-  if (nodes == 3) {
-    N[0] = l0, N[1] = l1, N[2] = l2;
-    dN_dxi[0] = -1.0, dN_dxi[1] = 1.0, dN_dxi[2] = 0.0;
-    dN_deta[0] = -1.0, dN_deta[1] = 0.0, dN_deta[2] = 1.0;
-    return;
-  }
-  N[0] = l0 * (2.0 * l0 - 1.0), N[1] = l1 * (2.0 * l1 - 1.0), N[2] = l2 * (2.0 * l2 - 1.0);
-  N[3] = 4.0 * l0 * l1, N[4] = 4.0 * l1 * l2, N[5] = 4.0 * l2 * l0;
-  // dL0 = (-1, -1), dL1 = (1, 0), dL2 = (0, 1).
-  dN_dxi[0] = -(4.0 * l0 - 1.0), dN_dxi[1] = 4.0 * l1 - 1.0, dN_dxi[2] = 0.0;
-  dN_dxi[3] = 4.0 * (l0 - l1), dN_dxi[4] = 4.0 * l2, dN_dxi[5] = -4.0 * l2;
-  dN_deta[0] = -(4.0 * l0 - 1.0), dN_deta[1] = 0.0, dN_deta[2] = 4.0 * l2 - 1.0;
-  dN_deta[3] = -4.0 * l1, dN_deta[4] = 4.0 * l1, dN_deta[5] = 4.0 * (l0 - l2);
-}
 
 Point3 cross(const Point3& a, const Point3& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
@@ -200,7 +172,7 @@ ContactParameters contact_parameters_from_case(const Case& input, double referen
   p.friction_law = input.text("contact.friction_law") == "velocity" ? FrictionLaw::velocity : FrictionLaw::return_map;
   p.normal_enforcement = input.text("contact.normal_enforcement") == "penalty" ? NormalEnforcement::penalty
                                                                                 : NormalEnforcement::augmented;
-  p.multiplier_update_interval = input.real("motion.duration_s") / kMultiplierUpdatesPerMotion;
+  p.multiplier_update_interval = mechanics::history_end(input) / kMultiplierUpdatesPerMotion;
   return p;
 }
 

@@ -164,7 +164,7 @@ struct ContactParameters {
   FrictionLaw friction_law = FrictionLaw::return_map;
   NormalEnforcement normal_enforcement = NormalEnforcement::penalty;
   // Augmented: accepted steps closer than this to the last multiplier update leave the offsets'
-  // ramp running (cases: motion.duration_s / 1000). Why: the rate (z_n - z_{n-1})/h of the
+  // ramp running (cases: the scene's history, mechanics::history_end, / 1000). Why: the rate (z_n - z_{n-1})/h of the
   // targets carries the Newton error of z divided by h; at the tiny steps of a start or a
   // stick/slip event, extrapolated, it is as large as the error test's tolerance, the test
   // fails, the step shrinks and the rate grows (measured: IDA_CONV_FAIL with steps of 1e-32 s at

@@ -54,4 +54,16 @@ ObstacleProjection TranslatingSphere::project(const Point3& x, double t) const {
   return p;
 }
 
+OffsetObstacle::OffsetObstacle(std::shared_ptr<const RigidObstacle> obstacle, const Point3& offset)
+    : obstacle_(std::move(obstacle)), offset_(offset) {}
+
+ObstacleProjection OffsetObstacle::project(const Point3& x, double t) const { return obstacle_->project(shifted(x), t); }
+
+Point3 OffsetObstacle::to_body(const Point3& x, double t) const { return obstacle_->to_body(shifted(x), t); }
+
+Point3 OffsetObstacle::from_body(const Point3& xi, double t) const {
+  const Point3 x = obstacle_->from_body(xi, t);
+  return {x[0] + offset_[0], x[1] + offset_[1], x[2] + offset_[2]};
+}
+
 }  // namespace needlefem::contact

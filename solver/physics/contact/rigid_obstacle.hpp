@@ -8,10 +8,12 @@
 // and the rigid motion itself, for friction anchors that ride with the obstacle: the body-frame
 // coordinates ξ of a spatial point at time t and back (to_body(from_body(ξ, t), t) = ξ).
 // Poses are prescribed functions of time: a plane through p(t) = p0 + v t with fixed normal,
-// a sphere with centre c(t) = c0 + v t (Hertz indentation tests).
+// a sphere with centre c(t) = c0 + v t (Hertz indentation tests), or another obstacle shifted by
+// a fixed offset.
 #pragma once
 
 #include <array>
+#include <memory>
 
 #include "model/tet_mesh.hpp"
 
@@ -65,6 +67,21 @@ class TranslatingSphere final : public TranslatingObstacle {
  private:
   Point3 centre_;
   double radius_;
+};
+
+// Another obstacle moved by a fixed offset c: g, n, G, w, W at x are the other's at x - c, and
+// its body frame is shifted by c (a needle placed by the case: scene_obstacle.hpp).
+class OffsetObstacle final : public RigidObstacle {
+ public:
+  OffsetObstacle(std::shared_ptr<const RigidObstacle> obstacle, const Point3& offset);
+  ObstacleProjection project(const Point3& x, double t) const override;
+  Point3 to_body(const Point3& x, double t) const override;
+  Point3 from_body(const Point3& xi, double t) const override;
+
+ private:
+  Point3 shifted(const Point3& x) const { return {x[0] - offset_[0], x[1] - offset_[1], x[2] - offset_[2]}; }
+  std::shared_ptr<const RigidObstacle> obstacle_;
+  Point3 offset_;
 };
 
 }  // namespace needlefem::contact

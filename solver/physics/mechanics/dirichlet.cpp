@@ -8,13 +8,14 @@
 #include <numbers>
 #include <string>
 
+#include <fmt/format.h>
+
 #include "case/case.hpp"
 #include "geometry/needle_motion.hpp"
 
 namespace needlefem::mechanics {
 
 namespace {
-
 
 // Collects conditions so that a dof constrained again takes the latest field.
 class ConditionBuilder {
@@ -52,12 +53,21 @@ const std::array<std::string, 6> kBlockFaces{"x_min", "x_max", "y_min", "y_max",
 
 const DisplacementField kZeroField = [](const Point3&, double) { return Point3{0.0, 0.0, 0.0}; };
 
-}  // namespace
-
-double ramp_then_hold(double t, double ramp_s) {
-  if (ramp_s <= 0.0) return t >= 0.0 ? 1.0 : 0.0;
-  return std::clamp(t / ramp_s, 0.0, 1.0);
+// The coordinate axis a surface group is normal to (all its nodes share that coordinate to 1e-9
+// of the mesh's extent), or none.
+std::optional<int> normal_axis(const TetMesh& mesh, const std::string& surface) {
+  Point3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300}, mesh_lo = lo, mesh_hi = hi;
+  for (const Point3& X : mesh.nodes)
+    for (int c = 0; c < 3; ++c) mesh_lo[c] = std::min(mesh_lo[c], X[c]), mesh_hi[c] = std::max(mesh_hi[c], X[c]);
+  for (int node : mesh.surface_faces.at(surface))
+    for (int c = 0; c < 3; ++c) lo[c] = std::min(lo[c], mesh.nodes[node][c]), hi[c] = std::max(hi[c], mesh.nodes[node][c]);
+  const double extent = std::max({mesh_hi[0] - mesh_lo[0], mesh_hi[1] - mesh_lo[1], mesh_hi[2] - mesh_lo[2]});
+  for (int c = 0; c < 3; ++c)
+    if (hi[c] - lo[c] <= 1e-9 * extent) return c;
+  return std::nullopt;
 }
+
+}  // namespace
 
 std::optional<double> block_inversion_time_s(const Case& input) {
   const std::vector<double> F = input.reals("block.applied_gradient");
@@ -139,8 +149,36 @@ DirichletConditions brain_tip_conditions(const Case& input, const TetMesh& mesh,
   return builder.finish();
 }
 
+DirichletConditions mesh_scene_conditions(const Case& input, const TetMesh& mesh, const DofMap& map) {
+  ConditionBuilder builder(mesh, map);
+  const int zero = builder.add_field(kZeroField);
+  for (const auto& group : input.texts("groups.fixed")) builder.constrain_surface(group, {0, 1, 2}, zero);
+  for (const auto& group : input.texts("groups.roller")) {
+    const std::optional<int> axis = normal_axis(mesh, group);
+    if (!axis)
+      throw input.error("groups.roller", fmt::format("group '{}' of {} is not a plane x, y or z = const, and a roller "
+                                                     "holds the normal component of such a plane only", group,
+                                                     input.path("scene.mesh_file").string()));
+    builder.constrain_surface(group, {*axis}, zero);
+  }
+  const std::vector<double> gradient = input.reals("displacement.gradient");
+  std::array<double, 9> displacement_gradient{};  // F - I
+  for (int n = 0; n < 9; ++n) displacement_gradient[n] = gradient[n] - (n % 4 == 0 ? 1.0 : 0.0);
+  const int displaced = builder.add_field([displacement_gradient, history = LoadHistory::from_case(input)](
+                                              const Point3& X, double t) {
+    const double s = history.factor(t);
+    Point3 u = history.translation(t);
+    for (int i = 0; i < 3; ++i)
+      for (int J = 0; J < 3; ++J) u[i] += s * displacement_gradient[3 * i + J] * X[J];
+    return u;
+  });
+  for (const auto& group : input.texts("groups.displaced")) builder.constrain_surface(group, {0, 1, 2}, displaced);
+  return builder.finish();
+}
+
 DirichletConditions scene_conditions(const Case& input, const TetMesh& mesh, const DofMap& map) {
   if (input.text("scene.kind") == "block") return block_conditions(input, mesh, map);
+  if (input.text("scene.kind") == "mesh") return mesh_scene_conditions(input, mesh, map);
   return brain_tip_conditions(input, mesh, map);
 }
 

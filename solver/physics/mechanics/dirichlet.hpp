@@ -1,4 +1,4 @@
-// Prescribed displacements (Dirichlet conditions) of the two mechanics scenes.
+// Prescribed displacements (Dirichlet conditions) of the mechanics scenes.
 //
 // Block scene (scene.kind = "block"), per face x_min .. z_max (key block.<face>):
 //   free                 no condition
@@ -10,6 +10,16 @@
 // s(t) = min(t / loading.ramp_s, 1) (ramp, then hold). A dof constrained by several faces (an
 // edge or corner) takes the condition of the last face in the order x_min, x_max, y_min, y_max,
 // z_min, z_max; consistent conditions (all derived from ū) agree there anyway.
+//
+// Mesh scene (scene.kind = "mesh"), on named surface groups of the user's mesh:
+//   groups.fixed      u = 0
+//   groups.roller     u·n = 0 with n the group's normal, which must be a coordinate axis (the group
+//                     a plane x, y or z = const): symmetry planes, and the end faces of a long body,
+//                     which then deforms in plane strain (the generalised plane strain of axially
+//                     periodic ends, a free uniform axial stretch, is not offered)
+//   groups.displaced  u = ū(X, t) = s(t) (F - I) X + d(t), F = displacement.gradient, s(t) and the
+//                     translation d(t) of the loading history (load_history.hpp)
+// A dof in several groups takes the condition of the last list in the order fixed, roller, displaced.
 //
 // Brain-tip scene (scene.kind = "brain-tip", paper 001): the five skull faces ("fixed") are
 // fixed; the entry face is free. The needle acts on the cavity through frictional contact
@@ -27,6 +37,7 @@
 
 #include "model/tet_mesh.hpp"
 #include "physics/mechanics/dof_map.hpp"
+#include "physics/mechanics/load_history.hpp"
 
 namespace needlefem {
 class Case;
@@ -53,9 +64,6 @@ struct DirichletConditions {
   }
 };
 
-// Load factor of the block scene: linear ramp to 1 over ramp_s, then hold.
-double ramp_then_hold(double t, double ramp_s);
-
 DirichletConditions block_conditions(const Case& input, const TetMesh& mesh, const DofMap& map);
 
 // The first time at which the block's applied field F(s) = I + s (F - I), s = ramp_then_hold(t),
@@ -63,6 +71,7 @@ DirichletConditions block_conditions(const Case& input, const TetMesh& mesh, con
 // it: a run stops there with a clear error instead of IDA shrinking its step to 1e-14 s.
 std::optional<double> block_inversion_time_s(const Case& input);
 DirichletConditions brain_tip_conditions(const Case& input, const TetMesh& mesh, const DofMap& map);
+DirichletConditions mesh_scene_conditions(const Case& input, const TetMesh& mesh, const DofMap& map);
 // The conditions of the case's scene.kind.
 DirichletConditions scene_conditions(const Case& input, const TetMesh& mesh, const DofMap& map);
 

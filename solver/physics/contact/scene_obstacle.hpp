@@ -1,0 +1,30 @@
+// The rigid obstacle a mesh-scene case places ([obstacle], scene.kind = "mesh"), in frictional
+// contact (penalty_contact.hpp, with the [contact] law) with the surface group obstacle.group:
+//   plane   the solid half-space behind the plane through obstacle.point_mm with outward normal
+//           obstacle.normal (TranslatingPlane);
+//   sphere  the solid ball of radius obstacle.radius_mm centred at obstacle.point_mm
+//           (TranslatingSphere);
+//   both translating at obstacle.velocity_mm_per_s;
+//   needle  the rigid needle of [needle] (bevel tip; bevel_deg = 90 and fillet_mm = 0 make a
+//           flat-ended punch, fillet_mm = radius_mm a round-ended rod) moved by [motion]
+//           (needle_obstacle.hpp): axis along z, tip towards +z, the centre of its rear face at
+//           obstacle.point_mm at t = 0 (OffsetObstacle).
+#pragma once
+
+#include <memory>
+
+#include "physics/contact/penalty_contact.hpp"
+
+namespace needlefem {
+class Case;
+}
+
+namespace needlefem::contact {
+
+// The contact of the case's obstacle with obstacle.group of `mesh` (which must outlive it), the
+// penalty scaled by the tissue's instantaneous shear modulus μ₀; nullptr for obstacle.kind =
+// "none". Throws CaseError for a zero plane normal and a needle kind that is not convex.
+std::shared_ptr<PenaltyContact> scene_obstacle_contact(const Case& input, const TetMesh& mesh,
+                                                       double reference_modulus);
+
+}  // namespace needlefem::contact
