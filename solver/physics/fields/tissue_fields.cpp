@@ -10,23 +10,6 @@
 
 namespace needlefem::fields {
 
-namespace {
-
-// Voigt 11 22 33 23 13 12 (physics/elements) to a symmetric tensor.
-Mat3d from_voigt(const double* v) {
-  Mat3d m;
-  m(0, 0) = v[0];
-  m(1, 1) = v[1];
-  m(2, 2) = v[2];
-  m(1, 2) = m(2, 1) = v[3];
-  m(0, 2) = m(2, 0) = v[4];
-  m(0, 1) = m(1, 0) = v[5];
-  return m;
-}
-
-
-}  // namespace
-
 const std::array<ScalarQuantityInfo, kScalarQuantities>& scalar_quantities() {
   static const std::array<ScalarQuantityInfo, kScalarQuantities> info{{{"von_mises", "Pa"},
                                                                         {"max_principal_stress", "Pa"},
@@ -38,8 +21,8 @@ const std::array<ScalarQuantityInfo, kScalarQuantities>& scalar_quantities() {
 }
 
 TissueFieldEvaluator::TissueFieldEvaluator(const mechanics::MechanicsSystem& system, const TetMesh& mesh,
-                                           const material::Material& material, double density_kg_per_m3)
-    : system_(system), mesh_(mesh), material_(material), density_(density_kg_per_m3) {
+                                           double density_kg_per_m3)
+    : system_(system), mesh_(mesh), density_(density_kg_per_m3) {
   const int n = mesh.nodes_per_tet;
   for (const auto& point : elements::element_quadrature(n)) {
     std::vector<double> N(n);
@@ -63,7 +46,6 @@ TissueFields TissueFieldEvaluator::evaluate(Vec y, Vec ydot) const {
   const auto& dofs = system_.dof_map();
   const int n = mesh_.nodes_per_tet, points = static_cast<int>(shape_values_.size());
   const int prony_terms = system_.kernel().prony_terms();
-  const auto* tissue = std::get_if<material::PolynomialTissue>(&material_.law());
   const bool mixed = system_.kernel().formulation() == elements::Formulation::mean_dilatation;
 
   TissueFields out;
@@ -121,16 +103,10 @@ TissueFields TissueFieldEvaluator::evaluate(Vec y, Vec ydot) const {
       element_kinetic_energy[k] +=
           0.5 * density_ * w * (velocity[0] * velocity[0] + velocity[1] * velocity[1] + velocity[2] * velocity[2]);
 
-      if (tissue) {
-        Mat3d isochoric = from_voigt(result.points[q].elastic_stress.data());
-        for (int i = 0; i < prony_terms; ++i)
-          isochoric -= from_voigt(viscous + (static_cast<std::size_t>(q) * prony_terms + i) * elements::kVoigt);
-        const double p = mixed ? result.pressure : tissue->volumetric.pressure(material::det(F));
-        stress = push_forward(F, isochoric) + Mat3d::diagonal(p, p, p);
-      } else {
-        const Mat3d P = material_.update(F, material_.initial_state(), 0.0).first_pk;
-        stress = (1.0 / material::det(F)) * (P * material::transpose(F));
-      }
+      // σ = J⁻¹ F S Fᵀ + p I: S as the element carried it (S_iso - Σ Q_i, or all of S for laws
+      // without the split, whose pressure is then 0), p the element's or the point's U'(J).
+      const double p = mixed ? result.pressure : result.points[q].pressure;
+      stress = push_forward(F, material::from_voigt(result.points[q].stress.data())) + Mat3d::diagonal(p, p, p);
       const PointQuantities pq = point_quantities(F, F_rate, stress);
       average_stress += (w / geometry.volume) * stress;
 
