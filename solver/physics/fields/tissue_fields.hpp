@@ -70,6 +70,14 @@ class TissueFieldEvaluator {
   const std::vector<double>& point_volumes() const { return point_volumes_; }
 
  private:
+  // Node fields filled, every other array sized and zeroed (maxima at -inf).
+  TissueFields node_fields(const double* state, const double* rate) const;
+  // Tissue element k's point values, cell maxima and mean Cauchy stress into `out`; the first
+  // point of each of its maxima into `largest_point` and its kinetic energy added to
+  // `kinetic_energy`. False (nothing written) for an inverted element.
+  bool evaluate_element(std::size_t k, const double* state, const double* rate, TissueFields& out,
+                        std::array<int, kScalarQuantities>& largest_point, double& kinetic_energy) const;
+
   const mechanics::MechanicsSystem& system_;
   const TetMesh& mesh_;
   double density_;
