@@ -268,7 +268,7 @@ ElementResult TetElementKernel::evaluate_law(const Law& law, const ElementGeomet
                                              double material_tangent_scale, const double* given_pressure,
                                              double* viscous_rate) const {
   const int n = geometry.nodes, dofs = 3 * n;
-  const auto values_per_point = static_cast<std::size_t>(prony_terms()) * kVoigt;
+  const std::size_t values_per_point = law.prony().size() * kVoigt;
   ElementResult result;
   double current_volume = 0.0;
   if (!deformation_gradients(geometry, displacement, result, current_volume)) return result;
