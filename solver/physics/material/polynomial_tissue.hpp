@@ -5,7 +5,7 @@
 //   S⁰_iso = 2 ∂W_iso/∂C (polynomial.hpp),   S_vol = J U'(J) C⁻¹,   U = K/2 (J - 1)².
 //
 // Its hyperelastic constants are INSTANTANEOUS moduli; the long-term shear modulus is
-// g∞ · 2 (C10 + C01). Two faces (material.hpp's Material chooses between laws):
+// g∞ · 2 (C10 + C01). The law answers in two forms:
 //  * the pointwise response of point_response.hpp, for the element kernel, with the Q_i as
 //    unknowns of the time integrator: S⁰_iso - Σ Q_i, ∂S⁰_iso/∂E, W_iso, U and its slopes, and
 //    the rates dQ_i/dt of PronyTerm::rate;
