@@ -284,7 +284,7 @@ nlohmann::json run_case(const Case& c, const RunOptions& options) {
     record.dofs = system->local_size();
     record.displacement_dofs = system->displacement_dofs();
     record.surfaces = reaction_surfaces(mesh, system->dof_map());
-    const fields::TissueFieldEvaluator evaluator(*system, mesh, *material, c.real("output.density_kg_per_m3"));
+    const fields::TissueFieldEvaluator evaluator(*system, mesh, c.real("output.density_kg_per_m3"));
     safety = std::make_unique<SafetyReport>(c, mesh, evaluator);
 
     std::vector<output::FieldSpec> specs = field_specs();

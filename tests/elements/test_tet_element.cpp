@@ -211,7 +211,7 @@ TEST(TetElement, CondensationElementMatchesTheDoubleProductsToSinglePrecision) {
   std::array<PointLanes, kVoigt> s{};
   std::vector<double> expected_work(30, 0.0);
   for (int q = 0; q < geometry.points; ++q) {
-    const PointResponse& point = result.points[q];
+    const PointResult& point = result.points[q];
     for (int m = 0; m < kVoigt; ++m)
       for (int n = 0; n < kVoigt; ++n)
         EXPECT_NEAR(point.elastic_tangent[m * kVoigt + n], point.elastic_tangent[n * kVoigt + m],
@@ -228,7 +228,7 @@ TEST(TetElement, CondensationElementMatchesTheDoubleProductsToSinglePrecision) {
   const auto tangent_stress = condensed.tangent_stress(u.data(), 10);
   double largest_error = 0.0;
   for (int q = 0; q < geometry.points; ++q) {
-    const PointResponse& point = result.points[q];
+    const PointResult& point = result.points[q];
     const auto strain = green_strain_variation(point.deformation_gradient, geometry.gradient_at(q), 10, u.data());
     double scale = 0.0, error = 0.0;
     for (int m = 0; m < kVoigt; ++m) {

@@ -15,12 +15,6 @@
 namespace needlefem::material {
 namespace {
 
-Mat3d general_deformation() {
-  Mat3d F;
-  F.a = {1.12, 0.21, -0.05, 0.03, 0.91, 0.12, -0.08, 0.04, 1.05};
-  return F;
-}
-
 Mat3d rotation(double angle, int axis) {
   Mat3d Q = Mat3d::identity();
   const int i = (axis + 1) % 3, j = (axis + 2) % 3;

@@ -10,38 +10,120 @@ namespace needlefem::elements {
 namespace {
 
 using material::Mat3d;
-
-constexpr std::array<int, kVoigt> kVoigtRow{0, 1, 2, 1, 0, 0};
-constexpr std::array<int, kVoigt> kVoigtColumn{0, 1, 2, 2, 2, 1};
-
-std::array<double, kVoigt> to_voigt(const Mat3d& s) {
-  std::array<double, kVoigt> v{};
-  for (int m = 0; m < kVoigt; ++m) v[m] = s(kVoigtRow[m], kVoigtColumn[m]);
-  return v;
-}
-
-Mat3d from_voigt(const double* v) {
-  Mat3d s;
-  for (int m = 0; m < kVoigt; ++m) {
-    s(kVoigtRow[m], kVoigtColumn[m]) = v[m];
-    s(kVoigtColumn[m], kVoigtRow[m]) = v[m];
-  }
-  return s;
-}
-
-// D(m, n) = ∂S_m/∂E_n with engineering shear columns: the Tensor4 of a symmetric-direction
-// jacobian already holds ∂S_ij/∂γ_kl in its (k, l) slot for k != l (direction E_kl = E_lk = 1/2).
-std::array<double, kVoigt * kVoigt> to_voigt(const material::Tensor4& d) {
-  std::array<double, kVoigt * kVoigt> v{};
-  for (int m = 0; m < kVoigt; ++m)
-    for (int n = 0; n < kVoigt; ++n) v[m * kVoigt + n] = d(kVoigtRow[m], kVoigtColumn[m], kVoigtRow[n], kVoigtColumn[n]);
-  return v;
-}
+using material::to_voigt;
 
 Mat3d to_mat3(const std::array<double, 9>& a) {
   Mat3d m;
   m.a = a;
   return m;
+}
+
+// Pass 1: F at every point into result.points and v_e = Σ_q w_q J_q (the mixed form needs v_e
+// before any stress). False, with result.inverted set, if det F <= 0 at some point.
+bool deformation_gradients(const ElementGeometry& geometry, const double* displacement, ElementResult& result,
+                           double& current_volume) {
+  const int n = geometry.nodes;
+  current_volume = 0.0;
+  for (int q = 0; q < geometry.points; ++q) {
+    const double* G = geometry.gradient_at(q);
+    Mat3d F = Mat3d::identity();
+    for (int a = 0; a < n; ++a)
+      for (int i = 0; i < 3; ++i)
+        for (int J = 0; J < 3; ++J) F(i, J) += displacement[3 * a + i] * G[3 * a + J];
+    const double det_f = material::det(F);
+    if (!(det_f > 0.0)) {
+      result.inverted = true;
+      return false;
+    }
+    result.points[q].deformation_gradient = F.a;
+    current_volume += geometry.weight[q] * det_f;
+  }
+  return true;
+}
+
+// Buffers of one element's tangent (sized for with_tangent only).
+struct TangentScratch {
+  std::vector<double> B, DB;  // B_q and D B_q, 6 x 3n
+  explicit TangentScratch(int dofs) : B(kVoigt * dofs), DB(kVoigt * dofs) {}
+};
+
+// K += scale B_qᵀ D B_q (the material part at point q).
+void add_material_stiffness(const PointResult& point, const double* G, int n, double scale, TangentScratch& scratch,
+                            std::vector<double>& K) {
+  const int dofs = 3 * n;
+  std::vector<double>& B = scratch.B;
+  std::vector<double>& DB = scratch.DB;
+  green_strain_operator(point.deformation_gradient, G, n, B.data());
+  for (int m = 0; m < kVoigt; ++m)
+    for (int c = 0; c < dofs; ++c) {
+      double s = 0.0;
+      for (int l = 0; l < kVoigt; ++l) s += point.elastic_tangent[m * kVoigt + l] * B[static_cast<std::size_t>(l) * dofs + c];
+      DB[static_cast<std::size_t>(m) * dofs + c] = s;
+    }
+  for (int row = 0; row < dofs; ++row)
+    for (int col = 0; col < dofs; ++col) {
+      double s = 0.0;
+      for (int m = 0; m < kVoigt; ++m)
+        s += B[static_cast<std::size_t>(m) * dofs + row] * DB[static_cast<std::size_t>(m) * dofs + col];
+      K[static_cast<std::size_t>(row) * dofs + col] += scale * s;
+    }
+}
+
+// Geometric stiffness K += w δ_ik G_a·S G_b.
+void add_geometric_stiffness(const Mat3d& stress, const double* G, int n, double w, std::vector<double>& K) {
+  const int dofs = 3 * n;
+  for (int a = 0; a < n; ++a)
+    for (int b = 0; b < n; ++b) {
+      double s = 0.0;
+      for (int I = 0; I < 3; ++I)
+        for (int J = 0; J < 3; ++J) s += G[3 * a + I] * stress(I, J) * G[3 * b + J];
+      for (int i = 0; i < 3; ++i) K[static_cast<std::size_t>(3 * a + i) * dofs + 3 * b + i] += w * s;
+    }
+}
+
+// n_ai = ∂N_a/∂x_i = G_aJ F⁻¹_Ji.
+void spatial_gradients(const Mat3d& F, const double* G, int n, double* spatial_gradient) {
+  const Mat3d f_inverse = material::inverse(F);
+  for (int a = 0; a < n; ++a)
+    for (int i = 0; i < 3; ++i) {
+      double s = 0.0;
+      for (int J = 0; J < 3; ++J) s += G[3 * a + J] * f_inverse(J, i);
+      spatial_gradient[3 * a + i] = s;
+    }
+}
+
+// Adds c (n_ai n_bk - n_ak n_bi), the J-normalised second derivative of J, to `target`.
+void add_jacobian_hessian(const double* spatial_gradient, int n, double c, std::vector<double>& target) {
+  const int dofs = 3 * n;
+  for (int a = 0; a < n; ++a)
+    for (int i = 0; i < 3; ++i)
+      for (int b = 0; b < n; ++b)
+        for (int k = 0; k < 3; ++k)
+          target[static_cast<std::size_t>(3 * a + i) * dofs + 3 * b + k] +=
+              c * (spatial_gradient[3 * a + i] * spatial_gradient[3 * b + k] -
+                   spatial_gradient[3 * a + k] * spatial_gradient[3 * b + i]);
+}
+
+// The mixed element's volumetric part from U at θ = v_e/V_e: p ∂v_e/∂u in the residual and
+// p ∂²v_e/∂u² + U''(θ)/V_e (∂v_e/∂u)(∂v_e/∂u)ᵀ in the tangent, p the given pressure or U'(θ).
+void add_mean_dilatation(const material::VolumetricResponse& at_theta, const ElementGeometry& geometry,
+                         const std::vector<double>& volume_hessian, const double* given_pressure, bool with_tangent,
+                         ElementResult& result) {
+  const int dofs = 3 * geometry.nodes;
+  const auto& volume_gradient = result.volume_gradient;
+  result.volume_pressure = at_theta.pressure;
+  result.pressure_stiffness = at_theta.slope / geometry.volume;
+  const double p = given_pressure ? *given_pressure : result.volume_pressure;
+  result.pressure = p;
+  result.energy += geometry.volume * at_theta.energy;
+  for (int c = 0; c < dofs; ++c) result.residual[c] += p * volume_gradient[c];
+  if (!with_tangent) return;
+  const double stiffness_per_volume = at_theta.slope / geometry.volume;
+  for (int row = 0; row < dofs; ++row)
+    for (int col = 0; col < dofs; ++col)
+      result.stiffness[static_cast<std::size_t>(row) * dofs + col] +=
+          p * volume_hessian[static_cast<std::size_t>(row) * dofs + col] +
+          stiffness_per_volume * volume_gradient[row] * volume_gradient[col];
 }
 
 }  // namespace
@@ -106,7 +188,7 @@ void green_strain_operator(const std::array<double, 9>& F, const double* gradien
   }
 }
 
-void CondensationElement::set_point(int p, const PointResponse& point, const double* point_gradient, int nodes,
+void CondensationElement::set_point(int p, const PointResult& point, const double* point_gradient, int nodes,
                                     double point_weight) {
   weight[p] = static_cast<float>(point_weight);
   for (int k = 0; k < 9; ++k) deformation_gradient[k][p] = static_cast<float>(point.deformation_gradient[k]);
@@ -162,185 +244,90 @@ std::array<PointLanes, kVoigt> CondensationElement::tangent_stress(const double*
 
 TetElementKernel::TetElementKernel(const material::Material& material, Formulation formulation)
     : material_(material), formulation_(formulation) {
-  if (tissue()) {
-    prony_ = tissue()->isochoric.terms;
-  } else if (formulation == Formulation::mean_dilatation) {
+  if (formulation == Formulation::mean_dilatation && !material.incompressible())
     throw std::invalid_argument("the mean-dilatation element needs a law with an isochoric/volumetric split; '" +
                                 material.name() + "' has none (use the displacement formulation)");
-  }
-}
-
-double TetElementKernel::condensed_tangent_scale(double cj) const {
-  double scale = 1.0;
-  if (std::isinf(cj)) return scale;
-  for (const auto& term : prony_) scale -= term.g / (1.0 + cj * term.tau_s);
-  return scale;
 }
 
 ElementResult TetElementKernel::evaluate(const ElementGeometry& geometry, const double* displacement,
-                                         const double* viscous, bool with_tangent,
-                                         double material_tangent_scale, const double* given_pressure) const {
-  const int n = geometry.nodes, dofs = 3 * n, points = geometry.points;
-  ElementResult result;
-  if (dofs > kMaxElementDofs || points > kMaxElementPoints)
+                                         const double* viscous, bool with_tangent, double material_tangent_scale,
+                                         const double* given_pressure, double* viscous_rate) const {
+  if (3 * geometry.nodes > kMaxElementDofs || geometry.points > kMaxElementPoints)
     throw std::invalid_argument("element evaluation: more nodes or quadrature points than a TET10's");
+  return std::visit(
+      [&](const auto& law) {
+        return evaluate_law(law, geometry, displacement, viscous, with_tangent, material_tangent_scale,
+                            given_pressure, viscous_rate);
+      },
+      material_.law());
+}
 
-  // Pass 1: F and J at every point (the mixed form needs v_e before any stress).
+template <class Law>
+ElementResult TetElementKernel::evaluate_law(const Law& law, const ElementGeometry& geometry,
+                                             const double* displacement, const double* viscous, bool with_tangent,
+                                             double material_tangent_scale, const double* given_pressure,
+                                             double* viscous_rate) const {
+  const int n = geometry.nodes, dofs = 3 * n;
+  const std::size_t values_per_point = law.prony().size() * kVoigt;
+  ElementResult result;
   double current_volume = 0.0;
-  for (int q = 0; q < points; ++q) {
-    const double* G = geometry.gradient_at(q);
-    Mat3d F = Mat3d::identity();
-    for (int a = 0; a < n; ++a)
-      for (int i = 0; i < 3; ++i)
-        for (int J = 0; J < 3; ++J) F(i, J) += displacement[3 * a + i] * G[3 * a + J];
-    const double det_f = material::det(F);
-    if (!(det_f > 0.0)) {
-      result.inverted = true;
-      return result;
-    }
-    result.points[q].deformation_gradient = F.a;
-    current_volume += geometry.weight[q] * det_f;
-  }
+  if (!deformation_gradients(geometry, displacement, result, current_volume)) return result;
 
   if (with_tangent) result.stiffness.assign(static_cast<std::size_t>(dofs) * dofs, 0.0);
   double* r = result.residual.data();
   std::vector<double>& K = result.stiffness;
   const bool mixed = formulation_ == Formulation::mean_dilatation;
-  std::vector<double> B(with_tangent ? kVoigt * dofs : 0), DB(with_tangent ? kVoigt * dofs : 0);
+  TangentScratch scratch(with_tangent ? dofs : 0);
   std::array<double, kMaxElementDofs> spatial_gradient{};  // n_ai = ∂N_a/∂x_i
-  std::array<double, kMaxElementDofs>& volume_gradient = result.volume_gradient;  // ∂v_e/∂u (mixed)
   std::vector<double> volume_hessian(mixed && with_tangent ? K.size() : 0);  // ∂²v_e/∂u²
   double pressure_volume_integral = 0.0;
 
-  // Adds c (n_ai n_bk - n_ak n_bi), the J-normalised second derivative of J, to `target`.
-  auto add_jacobian_hessian = [&](std::vector<double>& target, double c) {
-    for (int a = 0; a < n; ++a)
-      for (int i = 0; i < 3; ++i)
-        for (int b = 0; b < n; ++b)
-          for (int k = 0; k < 3; ++k)
-            target[static_cast<std::size_t>(3 * a + i) * dofs + 3 * b + k] +=
-                c * (spatial_gradient[3 * a + i] * spatial_gradient[3 * b + k] -
-                     spatial_gradient[3 * a + k] * spatial_gradient[3 * b + i]);
-  };
-
-  for (int q = 0; q < points; ++q) {
+  for (int q = 0; q < geometry.points; ++q) {
     const double w = geometry.weight[q];
     const double* G = geometry.gradient_at(q);
-    PointResponse& point = result.points[q];
+    PointResult& point = result.points[q];
     const Mat3d F = to_mat3(point.deformation_gradient);
-    const double det_f = material::det(F);
-
-    if (!tissue()) {
-      // Law without the split: P and ∂P/∂F straight from the material.
-      const material::ViscousState no_state = material_.initial_state();
-      const Mat3d P = material_.update(F, no_state, 0.0).first_pk;
-      result.energy += w * material_.instantaneous_energy(F);
-      for (int a = 0; a < n; ++a)
-        for (int i = 0; i < 3; ++i)
-          for (int J = 0; J < 3; ++J) r[3 * a + i] += w * P(i, J) * G[3 * a + J];
-      if (with_tangent) {
-        const material::Tensor4 A = material_.tangent(F, no_state, 0.0);
-        for (int a = 0; a < n; ++a)
-          for (int i = 0; i < 3; ++i)
-            for (int b = 0; b < n; ++b)
-              for (int k = 0; k < 3; ++k) {
-                double s = 0.0;
-                for (int J = 0; J < 3; ++J)
-                  for (int L = 0; L < 3; ++L) s += G[3 * a + J] * A(i, J, k, L) * G[3 * b + L];
-                K[static_cast<std::size_t>(3 * a + i) * dofs + 3 * b + k] += w * s;
-              }
-      }
-      continue;
-    }
-
-    // Isochoric part: S_iso = S⁰_iso - Σ Q_i.
-    const auto& isochoric = tissue()->isochoric;
-    const Mat3d C = material::right_cauchy_green(F);
-    const auto [elastic_stress, elastic_energy] = isochoric.elastic.stress_and_energy(C);
-    point.elastic_stress = to_voigt(elastic_stress);
-    Mat3d stress = elastic_stress;
-    if (viscous)
-      for (int i = 0; i < prony_terms(); ++i)
-        stress -= from_voigt(viscous + (static_cast<std::size_t>(q) * prony_terms() + i) * kVoigt);
-    const std::array<double, kVoigt> stress_v = to_voigt(stress);
-    result.energy += w * elastic_energy;
-
-    add_green_strain_transpose(point.deformation_gradient, G, n, stress_v, w, r);
-
+    const std::size_t offset = q * values_per_point;
+    const material::PointResponse response =
+        law.respond(F, viscous ? viscous + offset : nullptr, with_tangent ? &point.elastic_tangent : nullptr,
+                    viscous_rate ? viscous_rate + offset : nullptr);
+    point.stress = to_voigt(response.stress);
+    result.energy += w * response.energy;
+    add_green_strain_transpose(point.deformation_gradient, G, n, point.stress, w, r);
     if (with_tangent) {
-      green_strain_operator(point.deformation_gradient, G, n, B.data());
-      point.elastic_tangent = to_voigt(isochoric.elastic_tangent(C));
-      const double scale = w * material_tangent_scale;
-      for (int m = 0; m < kVoigt; ++m)
-        for (int c = 0; c < dofs; ++c) {
-          double s = 0.0;
-          for (int l = 0; l < kVoigt; ++l) s += point.elastic_tangent[m * kVoigt + l] * B[static_cast<std::size_t>(l) * dofs + c];
-          DB[static_cast<std::size_t>(m) * dofs + c] = s;
-        }
-      for (int row = 0; row < dofs; ++row)
-        for (int col = 0; col < dofs; ++col) {
-          double s = 0.0;
-          for (int m = 0; m < kVoigt; ++m)
-            s += B[static_cast<std::size_t>(m) * dofs + row] * DB[static_cast<std::size_t>(m) * dofs + col];
-          K[static_cast<std::size_t>(row) * dofs + col] += scale * s;
-        }
-      // Geometric stiffness δ_ik G_a·S G_b.
-      for (int a = 0; a < n; ++a)
-        for (int b = 0; b < n; ++b) {
-          double s = 0.0;
-          for (int I = 0; I < 3; ++I)
-            for (int J = 0; J < 3; ++J) s += G[3 * a + I] * stress(I, J) * G[3 * b + J];
-          for (int i = 0; i < 3; ++i) K[static_cast<std::size_t>(3 * a + i) * dofs + 3 * b + i] += w * s;
-        }
+      add_material_stiffness(point, G, n, w * material_tangent_scale, scratch, K);
+      add_geometric_stiffness(response.stress, G, n, w, K);
     }
-
-    // Volumetric part.
-    const Mat3d f_inverse = material::inverse(F);
-    for (int a = 0; a < n; ++a)
-      for (int i = 0; i < 3; ++i) {
-        double s = 0.0;
-        for (int J = 0; J < 3; ++J) s += G[3 * a + J] * f_inverse(J, i);
-        spatial_gradient[3 * a + i] = s;
-      }
-    const auto& volumetric = tissue()->volumetric;
-    if (mixed) {
-      for (int c = 0; c < dofs; ++c) volume_gradient[c] += w * det_f * spatial_gradient[c];
-      if (with_tangent) add_jacobian_hessian(volume_hessian, w * det_f);
-    } else {
-      const double p = volumetric.pressure(det_f), dp = volumetric.pressure_derivative();
-      result.energy += w * volumetric.energy(det_f);
-      pressure_volume_integral += w * p;
-      for (int c = 0; c < dofs; ++c) r[c] += w * p * det_f * spatial_gradient[c];
-      if (with_tangent) {
-        for (int row = 0; row < dofs; ++row)
-          for (int col = 0; col < dofs; ++col)
-            K[static_cast<std::size_t>(row) * dofs + col] +=
-                w * dp * det_f * det_f * spatial_gradient[row] * spatial_gradient[col];
-        add_jacobian_hessian(K, w * p * det_f);
+    if constexpr (Law::kVolumetricSplit) {
+      // Volumetric part: at the point's J (displacement) or through v_e (mixed, below).
+      const double det_f = material::det(F);
+      const material::VolumetricResponse& volumetric = response.volumetric;
+      point.pressure = volumetric.pressure;
+      spatial_gradients(F, G, n, spatial_gradient.data());
+      if (mixed) {
+        for (int c = 0; c < dofs; ++c) result.volume_gradient[c] += w * det_f * spatial_gradient[c];
+        if (with_tangent) add_jacobian_hessian(spatial_gradient.data(), n, w * det_f, volume_hessian);
+      } else {
+        const double p = volumetric.pressure;
+        result.energy += w * volumetric.energy;
+        pressure_volume_integral += w * p;
+        for (int c = 0; c < dofs; ++c) r[c] += w * p * det_f * spatial_gradient[c];
+        if (with_tangent) {
+          for (int row = 0; row < dofs; ++row)
+            for (int col = 0; col < dofs; ++col)
+              K[static_cast<std::size_t>(row) * dofs + col] +=
+                  w * volumetric.slope * det_f * det_f * spatial_gradient[row] * spatial_gradient[col];
+          add_jacobian_hessian(spatial_gradient.data(), n, w * p * det_f, K);
+        }
       }
     }
   }
-
-  if (!tissue()) return result;
-  const auto& volumetric = tissue()->volumetric;
-  if (mixed) {
-    const double theta = current_volume / geometry.volume;
-    result.volume_pressure = volumetric.pressure(theta);
-    result.pressure_stiffness = volumetric.pressure_derivative() / geometry.volume;
-    const double p = given_pressure ? *given_pressure : result.volume_pressure;
-    result.pressure = p;
-    result.energy += geometry.volume * volumetric.energy(theta);
-    for (int c = 0; c < dofs; ++c) r[c] += p * volume_gradient[c];
-    if (with_tangent) {
-      const double stiffness_per_volume = volumetric.pressure_derivative() / geometry.volume;
-      for (int row = 0; row < dofs; ++row)
-        for (int col = 0; col < dofs; ++col)
-          K[static_cast<std::size_t>(row) * dofs + col] +=
-              p * volume_hessian[static_cast<std::size_t>(row) * dofs + col] +
-              stiffness_per_volume * volume_gradient[row] * volume_gradient[col];
-    }
-  } else {
-    result.pressure = pressure_volume_integral / geometry.volume;
+  if constexpr (Law::kVolumetricSplit) {
+    if (mixed)
+      add_mean_dilatation(law.volumetric_response(current_volume / geometry.volume), geometry, volume_hessian,
+                          given_pressure, with_tangent, result);
+    else
+      result.pressure = pressure_volume_integral / geometry.volume;
   }
   return result;
 }

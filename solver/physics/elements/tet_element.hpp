@@ -35,13 +35,16 @@
 //   K = Σ_q w_q [ s B_qᵀ D⁰ B_q + δ_ik G_a·S_iso G_b ] + volumetric part,
 //   D⁰ = ∂S⁰_iso/∂E (6 x 6, exact via dual numbers), s = `material_tangent_scale` (1 for ∂r/∂u;
 //   1 - Σ_i g_i/(1 + c_j τ_i) after the Prony internal variables have been condensed out of an
-//   IDA Newton matrix, see mechanics/mechanics_system.hpp),
+//   IDA Newton matrix, material::condensed_fraction and mechanics/mechanics_system.hpp),
 //   ∂²J/∂u_ai∂u_bk = J (n_ai n_bk - n_ak n_bi),
 //   displacement: Σ_q w_q [U''(J) J² n n + U'(J) J (n_ai n_bk - n_ak n_bi)],
 //   mixed: U'(θ) ∂²v_e/∂u² + U''(θ)/V_e (∂v_e/∂u)(∂v_e/∂u)ᵀ.
 //
-// Laws without the isochoric/volumetric split (co-rotational linear) use the displacement
-// formulation with P(F) and ∂P/∂F from the material; they carry no internal variables.
+// The kernel asks the law for nothing but its pointwise response (physics/material/
+// point_response.hpp): S, D⁰, W_iso, U(J) with its slopes and, for IDA's viscous rows, the
+// Prony rates dQ_i/dt. Laws without the isochoric/volumetric split (co-rotational linear) give
+// all of S and ∂S/∂E there and use the displacement formulation only; they carry no internal
+// variables. The kernel is instantiated per law (std::visit once per element, not per point).
 //
 // Quadrature: TET10 the 4-point degree-2 rule (Keast; Abaqus' C3D10/C3D10H rule), exact for the
 // stiffness of straight-sided elements and enough for optimal convergence of quadratic elements;
@@ -58,7 +61,7 @@ namespace needlefem::elements {
 
 enum class Formulation { displacement, mean_dilatation };
 
-constexpr int kVoigt = 6;  // components of a symmetric tensor in Voigt form
+using material::kVoigt;
 
 const std::vector<QuadraturePoint>& element_quadrature(int nodes_per_tet);
 
@@ -76,12 +79,13 @@ struct ElementGeometry {
 // inverted reference element.
 ElementGeometry element_geometry(int nodes_per_tet, const double* coordinates);
 
-// What an evaluation reports at each quadrature point, for the viscous rate equations and the
-// condensation of their internal variables.
-struct PointResponse {
-  std::array<double, 9> deformation_gradient{};     // F, row-major
-  std::array<double, kVoigt> elastic_stress{};      // S⁰_iso, Voigt
-  std::array<double, kVoigt * kVoigt> elastic_tangent{};  // D⁰ = ∂S⁰_iso,v/∂E_v (with tangent)
+// What an evaluation reports at each quadrature point, for output fields and the condensation
+// of the viscous internal variables.
+struct PointResult {
+  std::array<double, 9> deformation_gradient{};           // F, row-major
+  material::Voigt stress{};                               // S carried by B_q (S_iso - Σ Q_i or all of S)
+  material::VoigtTangent elastic_tangent{};               // D⁰ = ∂S⁰_iso,v/∂E_v (with tangent)
+  double pressure = 0.0;                                  // split laws: U'(J) at the point
 };
 
 constexpr int kMaxElementDofs = 30;    // TET10
@@ -93,7 +97,7 @@ struct ElementResult {
   bool inverted = false;                             // det F <= 0 at some point (or θ <= 0): nothing else is valid
   std::array<double, kMaxElementDofs> residual{};   // the first 3n: internal force
   std::vector<double> stiffness;                     // 3n x 3n row-major (when requested)
-  std::array<PointResponse, kMaxElementPoints> points{};  // the first geometry.points
+  std::array<PointResult, kMaxElementPoints> points{};    // the first geometry.points
   double pressure = 0.0;            // mixed: U'(θ); displacement: volume average of U'(J)
   double energy = 0.0;              // elastic energy of the element (instantaneous, Q not counted)
   // Mixed form only: U'(θ), ∂v_e/∂u (3n) and U''(θ)/V_e, for an element pressure that is an
@@ -111,24 +115,24 @@ class TetElementKernel {
 
   Formulation formulation() const { return formulation_; }
   // Prony terms of the material (0 for elastic laws); internal variables per point = 6 x this.
-  int prony_terms() const { return static_cast<int>(prony_.size()); }
-  const std::vector<material::PronyTerm>& prony() const { return prony_; }
-  // 1 - Σ g_i/(1 + cj τ_i): the factor of D⁰ in the Newton matrix with Q condensed (cj = +inf: 1).
-  double condensed_tangent_scale(double cj) const;
+  int prony_terms() const { return static_cast<int>(material_.prony().size()); }
+  const std::vector<material::PronyTerm>& prony() const { return material_.prony(); }
 
   // displacement: 3n values; viscous: points x terms x 6 Voigt Q values, or nullptr for Q = 0;
-  // given_pressure: the mixed element's p, or nullptr for p = U'(θ).
+  // given_pressure: the mixed element's p, or nullptr for p = U'(θ); viscous_rate: where to
+  // write dQ_i/dt (laid out like `viscous`), or nullptr.
   ElementResult evaluate(const ElementGeometry& geometry, const double* displacement, const double* viscous,
                          bool with_tangent, double material_tangent_scale = 1.0,
-                         const double* given_pressure = nullptr) const;
+                         const double* given_pressure = nullptr, double* viscous_rate = nullptr) const;
 
  private:
-  const material::PolynomialTissue* tissue() const {
-    return std::get_if<material::PolynomialTissue>(&material_.law());
-  }
+  template <class Law>
+  ElementResult evaluate_law(const Law& law, const ElementGeometry& geometry, const double* displacement,
+                             const double* viscous, bool with_tangent, double material_tangent_scale,
+                             const double* given_pressure, double* viscous_rate) const;
+
   material::Material material_;
   Formulation formulation_;
-  std::vector<material::PronyTerm> prony_;
 };
 
 // B_q of the header comment (6 x 3n, row-major) at deformation gradient F and gradients G.
@@ -185,7 +189,7 @@ struct CondensationElement {
   PointLanes weight{};                                                // w_q
 
   // Point p's lane from its evaluation, gradients (3n) and weight.
-  void set_point(int p, const PointResponse& point, const double* gradient, int nodes, double weight);
+  void set_point(int p, const PointResult& point, const double* gradient, int nodes, double weight);
   // Σ_q w_q B_qᵀ s_q added to out (3n); s holds each point's Voigt stress in its lane.
   void add_stress_transpose(const std::array<PointLanes, kVoigt>& s, int nodes, double* out) const;
   // D⁰ B_q u at every point q, in its lane.

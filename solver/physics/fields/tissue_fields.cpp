@@ -10,23 +10,6 @@
 
 namespace needlefem::fields {
 
-namespace {
-
-// Voigt 11 22 33 23 13 12 (physics/elements) to a symmetric tensor.
-Mat3d from_voigt(const double* v) {
-  Mat3d m;
-  m(0, 0) = v[0];
-  m(1, 1) = v[1];
-  m(2, 2) = v[2];
-  m(1, 2) = m(2, 1) = v[3];
-  m(0, 2) = m(2, 0) = v[4];
-  m(0, 1) = m(1, 0) = v[5];
-  return m;
-}
-
-
-}  // namespace
-
 const std::array<ScalarQuantityInfo, kScalarQuantities>& scalar_quantities() {
   static const std::array<ScalarQuantityInfo, kScalarQuantities> info{{{"von_mises", "Pa"},
                                                                         {"max_principal_stress", "Pa"},
@@ -38,8 +21,8 @@ const std::array<ScalarQuantityInfo, kScalarQuantities>& scalar_quantities() {
 }
 
 TissueFieldEvaluator::TissueFieldEvaluator(const mechanics::MechanicsSystem& system, const TetMesh& mesh,
-                                           const material::Material& material, double density_kg_per_m3)
-    : system_(system), mesh_(mesh), material_(material), density_(density_kg_per_m3) {
+                                           double density_kg_per_m3)
+    : system_(system), mesh_(mesh), density_(density_kg_per_m3) {
   const int n = mesh.nodes_per_tet;
   for (const auto& point : elements::element_quadrature(n)) {
     std::vector<double> N(n);
@@ -58,27 +41,90 @@ TissueFieldEvaluator::TissueFieldEvaluator(const mechanics::MechanicsSystem& sys
     }
 }
 
-TissueFields TissueFieldEvaluator::evaluate(Vec y, Vec ydot) const {
-  const ReadArray state(y), rate(ydot);
+TissueFields TissueFieldEvaluator::node_fields(const double* state, const double* rate) const {
   const auto& dofs = system_.dof_map();
-  const int n = mesh_.nodes_per_tet, points = static_cast<int>(shape_values_.size());
-  const int prony_terms = system_.kernel().prony_terms();
-  const auto* tissue = std::get_if<material::PolynomialTissue>(&material_.law());
-  const bool mixed = system_.kernel().formulation() == elements::Formulation::mean_dilatation;
-
   TissueFields out;
   out.displacement.assign(3 * mesh_.nodes.size(), 0.0);
   out.velocity.assign(3 * mesh_.nodes.size(), 0.0);
   for (std::size_t node = 0; node < mesh_.nodes.size(); ++node)
     if (dofs.node_dof[node] >= 0)
       for (int c = 0; c < 3; ++c) {
-        out.displacement[3 * node + c] = state.data()[dofs.dof(static_cast<int>(node), c)];
-        out.velocity[3 * node + c] = rate.data()[dofs.dof(static_cast<int>(node), c)];
+        out.displacement[3 * node + c] = state[dofs.dof(static_cast<int>(node), c)];
+        out.velocity[3 * node + c] = rate[dofs.dof(static_cast<int>(node), c)];
       }
   out.cauchy_stress.assign(6 * mesh_.tet_count(), 0.0);
   for (auto& cells : out.cell_maximum) cells.assign(mesh_.tet_count(), 0.0);
   for (auto& m : out.maximum) m.value = -std::numeric_limits<double>::infinity();
   for (auto& values : out.point_value) values.assign(point_positions_.size(), 0.0);
+  return out;
+}
+
+bool TissueFieldEvaluator::evaluate_element(std::size_t k, const double* state, const double* rate,
+                                            TissueFields& out, std::array<int, kScalarQuantities>& largest_point,
+                                            double& kinetic_energy) const {
+  const auto& dofs = system_.dof_map();
+  const int n = mesh_.nodes_per_tet, points = static_cast<int>(shape_values_.size());
+  const std::size_t e = dofs.tissue_tets[k];
+  std::array<double, elements::kMaxElementDofs> u_e{}, v_e{};
+  for (int a = 0; a < n; ++a)
+    for (int c = 0; c < 3; ++c) {
+      const int dof = dofs.dof(mesh_.tet(e)[a], c);
+      u_e[3 * a + c] = state[dof];
+      v_e[3 * a + c] = rate[dof];
+    }
+  const double* viscous = system_.kernel().prony_terms() ? state + system_.viscous_offset(k) : nullptr;
+  const auto& geometry = system_.geometry(k);
+  const elements::ElementResult result =
+      system_.kernel().evaluate(geometry, u_e.data(), viscous, false, 1.0, system_.element_pressure(state, k));
+  if (result.inverted) return false;
+
+  const bool mixed = system_.kernel().formulation() == elements::Formulation::mean_dilatation;
+  Mat3d average_stress;
+  for (int q = 0; q < points; ++q) {
+    const double w = geometry.weight[q];
+    const double* G = geometry.gradient_at(q);
+    Mat3d F, F_rate;
+    F.a = result.points[q].deformation_gradient;
+    Point3 velocity{};
+    for (int a = 0; a < n; ++a)
+      for (int i = 0; i < 3; ++i) {
+        velocity[i] += shape_values_[q][a] * v_e[3 * a + i];
+        for (int J = 0; J < 3; ++J) F_rate(i, J) += v_e[3 * a + i] * G[3 * a + J];
+      }
+    kinetic_energy +=
+        0.5 * density_ * w * (velocity[0] * velocity[0] + velocity[1] * velocity[1] + velocity[2] * velocity[2]);
+
+    // σ = J⁻¹ F S Fᵀ + p I: S as the element carried it (S_iso - Σ Q_i, or all of S for laws
+    // without the split, whose pressure is then 0), p the element's or the point's U'(J).
+    const double p = mixed ? result.pressure : result.points[q].pressure;
+    const Mat3d stress =
+        push_forward(F, material::from_voigt(result.points[q].stress.data())) + Mat3d::diagonal(p, p, p);
+    const PointQuantities pq = point_quantities(F, F_rate, stress);
+    average_stress += (w / geometry.volume) * stress;
+
+    const std::array<double, kScalarQuantities> values{pq.von_mises,       pq.max_principal_stress,
+                                                       pq.max_log_strain,  pq.max_strain_rate,
+                                                       pq.equivalent_strain_rate, pq.pressure};
+    for (int s = 0; s < kScalarQuantities; ++s) {
+      out.point_value[s][k * points + q] = values[s];
+      double& cell = out.cell_maximum[s][e];
+      if (q == 0 || values[s] > cell) {
+        cell = values[s];
+        largest_point[s] = q;
+      }
+    }
+  }
+  const double vtk_order[6] = {average_stress(0, 0), average_stress(1, 1), average_stress(2, 2),
+                               average_stress(0, 1), average_stress(1, 2), average_stress(0, 2)};
+  std::copy(vtk_order, vtk_order + 6, out.cauchy_stress.begin() + 6 * e);
+  return true;
+}
+
+TissueFields TissueFieldEvaluator::evaluate(Vec y, Vec ydot) const {
+  const ReadArray state(y), rate(ydot);
+  const auto& dofs = system_.dof_map();
+  const int points = static_cast<int>(shape_values_.size());
+  TissueFields out = node_fields(state.data(), rate.data());
 
   // The elements run on the OpenMP threads. What crosses elements (the largest value over all
   // points with its position, the kinetic energy) is gathered afterwards in element order, so
@@ -88,68 +134,8 @@ TissueFields TissueFieldEvaluator::evaluate(Vec y, Vec ydot) const {
   std::vector<double> element_kinetic_energy(element_count, 0.0);
   std::vector<char> inverted(element_count, 0);
 #pragma omp parallel for schedule(static)
-  for (std::size_t k = 0; k < element_count; ++k) {
-    const std::size_t e = dofs.tissue_tets[k];
-    std::array<double, elements::kMaxElementDofs> u_e{}, v_e{};
-    for (int a = 0; a < n; ++a)
-      for (int c = 0; c < 3; ++c) {
-        const int dof = dofs.dof(mesh_.tet(e)[a], c);
-        u_e[3 * a + c] = state.data()[dof];
-        v_e[3 * a + c] = rate.data()[dof];
-      }
-    const double* viscous = prony_terms ? state.data() + system_.viscous_offset(k) : nullptr;
-    const auto& geometry = system_.geometry(k);
-    const elements::ElementResult result =
-        system_.kernel().evaluate(geometry, u_e.data(), viscous, false, 1.0, system_.element_pressure(state.data(), k));
-    if (result.inverted) {
-      inverted[k] = 1;
-      continue;
-    }
-
-    Mat3d average_stress;
-    for (int q = 0; q < points; ++q) {
-      const double w = geometry.weight[q];
-      const double* G = geometry.gradient_at(q);
-      Mat3d F, F_rate, stress;
-      F.a = result.points[q].deformation_gradient;
-      Point3 velocity{};
-      for (int a = 0; a < n; ++a)
-        for (int i = 0; i < 3; ++i) {
-          velocity[i] += shape_values_[q][a] * v_e[3 * a + i];
-          for (int J = 0; J < 3; ++J) F_rate(i, J) += v_e[3 * a + i] * G[3 * a + J];
-        }
-      element_kinetic_energy[k] +=
-          0.5 * density_ * w * (velocity[0] * velocity[0] + velocity[1] * velocity[1] + velocity[2] * velocity[2]);
-
-      if (tissue) {
-        Mat3d isochoric = from_voigt(result.points[q].elastic_stress.data());
-        for (int i = 0; i < prony_terms; ++i)
-          isochoric -= from_voigt(viscous + (static_cast<std::size_t>(q) * prony_terms + i) * elements::kVoigt);
-        const double p = mixed ? result.pressure : tissue->volumetric.pressure(material::det(F));
-        stress = push_forward(F, isochoric) + Mat3d::diagonal(p, p, p);
-      } else {
-        const Mat3d P = material_.update(F, material_.initial_state(), 0.0).first_pk;
-        stress = (1.0 / material::det(F)) * (P * material::transpose(F));
-      }
-      const PointQuantities pq = point_quantities(F, F_rate, stress);
-      average_stress += (w / geometry.volume) * stress;
-
-      const std::array<double, kScalarQuantities> values{pq.von_mises,       pq.max_principal_stress,
-                                                         pq.max_log_strain,  pq.max_strain_rate,
-                                                         pq.equivalent_strain_rate, pq.pressure};
-      for (int s = 0; s < kScalarQuantities; ++s) {
-        out.point_value[s][k * points + q] = values[s];
-        double& cell = out.cell_maximum[s][e];
-        if (q == 0 || values[s] > cell) {
-          cell = values[s];
-          largest_point[k][s] = q;
-        }
-      }
-    }
-    const double vtk_order[6] = {average_stress(0, 0), average_stress(1, 1), average_stress(2, 2),
-                                 average_stress(0, 1), average_stress(1, 2), average_stress(0, 2)};
-    std::copy(vtk_order, vtk_order + 6, out.cauchy_stress.begin() + 6 * e);
-  }
+  for (std::size_t k = 0; k < element_count; ++k)
+    inverted[k] = !evaluate_element(k, state.data(), rate.data(), out, largest_point[k], element_kinetic_energy[k]);
   for (std::size_t k = 0; k < element_count; ++k) {
     const std::size_t e = dofs.tissue_tets[k];
     if (inverted[k]) throw std::runtime_error("output fields: inverted tissue element " + std::to_string(e));

@@ -21,7 +21,6 @@
 #include <petscvec.h>
 
 #include "model/tet_mesh.hpp"
-#include "physics/material/material.hpp"
 #include "physics/mechanics/mechanics_system.hpp"
 
 namespace needlefem::fields {
@@ -59,9 +58,8 @@ struct TissueFields {
 
 class TissueFieldEvaluator {
  public:
-  // `system` and `mesh` must outlive the evaluator; `material` is the system's material.
-  TissueFieldEvaluator(const mechanics::MechanicsSystem& system, const TetMesh& mesh,
-                       const material::Material& material, double density_kg_per_m3);
+  // `system` and `mesh` must outlive the evaluator.
+  TissueFieldEvaluator(const mechanics::MechanicsSystem& system, const TetMesh& mesh, double density_kg_per_m3);
 
   // Throws std::runtime_error for an inverted element (the integrator never accepts one).
   TissueFields evaluate(Vec y, Vec ydot) const;
@@ -72,9 +70,16 @@ class TissueFieldEvaluator {
   const std::vector<double>& point_volumes() const { return point_volumes_; }
 
  private:
+  // Node fields filled, every other array sized and zeroed (maxima at -inf).
+  TissueFields node_fields(const double* state, const double* rate) const;
+  // Tissue element k's point values, cell maxima and mean Cauchy stress into `out`; the first
+  // point of each of its maxima into `largest_point` and its kinetic energy added to
+  // `kinetic_energy`. False (nothing written) for an inverted element.
+  bool evaluate_element(std::size_t k, const double* state, const double* rate, TissueFields& out,
+                        std::array<int, kScalarQuantities>& largest_point, double& kinetic_energy) const;
+
   const mechanics::MechanicsSystem& system_;
   const TetMesh& mesh_;
-  material::Material material_;
   double density_;
   std::vector<std::vector<double>> shape_values_;  // per point: N_a(ξ_q)
   std::vector<Point3> point_positions_;            // per tissue element and point

@@ -9,13 +9,24 @@
 // mu = E / (2(1 + nu)), lambda = E nu / ((1 + nu)(1 - 2 nu)). Exact for rigid rotations, it is
 // not a finite-strain model: its stress-stretch curve departs from the hyperelastic tissue's
 // at large stretch, which is the point of offering it for comparison.
+//
+// For the element kernel (point_response.hpp) the law answers with S = F⁻¹P = U⁻¹ σ_lin(U - I)
+// (symmetric: σ_lin is a polynomial in U) and its exact ∂S/∂E on Dual numbers. It has no
+// volumetric split and no internal variables.
 #pragma once
 
+#include <string>
+#include <vector>
+
+#include "physics/material/point_response.hpp"
 #include "physics/material/tensor.hpp"
+#include "physics/material/viscoelastic.hpp"
 
 namespace needlefem::material {
 
 struct CorotationalLinear {
+  static constexpr bool kVolumetricSplit = false;
+
   double youngs_modulus = 0.0;  // E, Pa
   double poisson_ratio = 0.0;   // nu < 0.5
 
@@ -40,6 +51,26 @@ struct CorotationalLinear {
         T(2.0 * shear_modulus()) * strain + (T(lame_lambda()) * trace(strain)) * Mat3<T>::identity();
     return R * rotated_stress;
   }
+
+  // --- pointwise response (point_response.hpp) -----------------------------------------------
+  const std::vector<PronyTerm>& prony() const {
+    static const std::vector<PronyTerm> none;
+    return none;
+  }
+  // `viscous` and `viscous_rate` are unused: the law has no internal variables.
+  PointResponse respond(const Mat3d& F, const double* viscous, VoigtTangent* tangent, double* viscous_rate) const;
+
+  // --- one step from a stored state: elastic, so the state passes through ---------------------
+  ViscousState initial_state() const { return {}; }
+  template <class T>
+  Mat3<T> second_pk(const Mat3<T>& F, const ViscousState&, double) const {
+    return inverse(F) * first_piola_kirchhoff(F);
+  }
+  ViscousState advance(const Mat3d&, const ViscousState& old, double) const { return old; }
+  double instantaneous_shear_modulus() const { return shear_modulus(); }
+  double long_term_shear_modulus() const { return shear_modulus(); }
+  // The law and its constants, for logs and output headers.
+  std::string description() const;
 };
 
 }  // namespace needlefem::material

@@ -7,11 +7,11 @@
 // both with Prony g1 = 0.450, tau1 = 0.5 s; g2 = 0.365, tau2 = 50 s (g∞ = 0.185).
 #include "physics/material/material.hpp"
 
-#include <cmath>
 #include <numeric>
+#include <stdexcept>
+#include <type_traits>
 
 #include <fmt/format.h>
-#include <fmt/ranges.h>
 
 #include "case/case.hpp"
 
@@ -60,23 +60,36 @@ std::vector<PronyTerm> custom_prony(const Case& input) {
 }  // namespace
 
 ViscousState Material::initial_state() const {
-  if (const auto* tissue = std::get_if<PolynomialTissue>(&law_)) return tissue->isochoric.initial_state();
-  return {};
+  return std::visit([](const auto& law) { return law.initial_state(); }, law_);
+}
+
+const std::vector<PronyTerm>& Material::prony() const {
+  return std::visit([](const auto& law) -> const std::vector<PronyTerm>& { return law.prony(); }, law_);
 }
 
 template <class T>
 Mat3<T> Material::stepped_second_pk(const Mat3<T>& F, const ViscousState& old, double dt) const {
-  if (const auto* tissue = std::get_if<PolynomialTissue>(&law_)) {
-    const Mat3<T> C = right_cauchy_green(F);
-    return tissue->isochoric.stepped_stress(C, old, dt) + tissue->volumetric.stress(C);
-  }
-  return inverse(F) * std::get<CorotationalLinear>(law_).first_piola_kirchhoff(F);
+  return std::visit([&](const auto& law) { return law.second_pk(F, old, dt); }, law_);
 }
 
 MaterialPointResult Material::update(const Mat3d& F, const ViscousState& old, double dt) const {
   const Mat3d S = stepped_second_pk(F, old, dt);
-  const auto* tissue = std::get_if<PolynomialTissue>(&law_);
-  return {F * S, S, tissue ? tissue->isochoric.advance(right_cauchy_green(F), old, dt) : old};
+  return {F * S, S, advance(F, old, dt)};
+}
+
+Mat3d Material::isochoric_second_pk(const Mat3d& F, const ViscousState& old, double dt) const {
+  return std::visit(
+      [&](const auto& law) -> Mat3d {
+        if constexpr (std::decay_t<decltype(law)>::kVolumetricSplit)
+          return law.isochoric_second_pk(F, old, dt);
+        else
+          throw std::invalid_argument("material '" + name_ + "' has no isochoric/volumetric split");
+      },
+      law_);
+}
+
+ViscousState Material::advance(const Mat3d& F, const ViscousState& old, double dt) const {
+  return std::visit([&](const auto& law) { return law.advance(F, old, dt); }, law_);
 }
 
 Tensor4 Material::tangent(const Mat3d& F, const ViscousState& old, double dt) const {
@@ -84,53 +97,23 @@ Tensor4 Material::tangent(const Mat3d& F, const ViscousState& old, double dt) co
 }
 
 Tensor4 Material::tangent_green_strain(const Mat3d& F, const ViscousState& old, double dt) const {
-  // A symmetric strain direction dE is produced by dF = F^-T dE (then dC = 2 dE), so the
-  // derivative of S(F) along F^-T dE is ∂S/∂E : dE. The jacobian is seeded at C (its value
-  // part is unused) only to generate the symmetric directions dE.
-  const Mat3d F_inverse_transpose = transpose(inverse(F));
-  return directional_jacobian(right_cauchy_green(F), true, [&](const Mat3<Dual>& seeded_c) {
-    return stepped_second_pk(seeded(F, F_inverse_transpose * derivative_of(seeded_c)), old, dt);
-  });
+  return green_strain_tangent(F, [&](const Mat3<Dual>& f) { return stepped_second_pk(f, old, dt); });
 }
 
 double Material::instantaneous_energy(const Mat3d& F) const {
-  if (const auto* tissue = std::get_if<PolynomialTissue>(&law_)) {
-    const Mat3d C = right_cauchy_green(F);
-    return tissue->isochoric.elastic.energy(C) + tissue->volumetric.energy(std::sqrt(det(C)));
-  }
-  return std::get<CorotationalLinear>(law_).energy(F);
+  return std::visit([&](const auto& law) { return law.energy(F); }, law_);
 }
 
 double Material::instantaneous_shear_modulus() const {
-  if (const auto* tissue = std::get_if<PolynomialTissue>(&law_))
-    return tissue->isochoric.elastic.initial_shear_modulus();
-  return std::get<CorotationalLinear>(law_).shear_modulus();
+  return std::visit([](const auto& law) { return law.instantaneous_shear_modulus(); }, law_);
 }
 
 double Material::long_term_shear_modulus() const {
-  if (const auto* tissue = std::get_if<PolynomialTissue>(&law_))
-    return tissue->isochoric.long_term_fraction() * tissue->isochoric.elastic.initial_shear_modulus();
-  return std::get<CorotationalLinear>(law_).shear_modulus();
+  return std::visit([](const auto& law) { return law.long_term_shear_modulus(); }, law_);
 }
 
 std::string Material::description() const {
-  if (const auto* tissue = std::get_if<PolynomialTissue>(&law_)) {
-    const auto& c = tissue->isochoric.elastic;
-    std::vector<double> g, tau;
-    for (const auto& term : tissue->isochoric.terms) {
-      g.push_back(term.g);
-      tau.push_back(term.tau_s);
-    }
-    return fmt::format(
-        "{}: polynomial N=2, INSTANTANEOUS C10={} C01={} C20={} C11={} C02={} Pa, bulk modulus K={} Pa; "
-        "Prony g=[{}] tau_s=[{}] (g_inf={:.4g}); shear modulus instantaneous {:.6g} Pa, long-term {:.6g} Pa",
-        name_, c.c10, c.c01, c.c20, c.c11, c.c02, tissue->volumetric.bulk_modulus, fmt::join(g, ", "),
-        fmt::join(tau, ", "), tissue->isochoric.long_term_fraction(), instantaneous_shear_modulus(),
-        long_term_shear_modulus());
-  }
-  const auto& law = std::get<CorotationalLinear>(law_);
-  return fmt::format("{}: co-rotational linear elastic, E={} Pa, nu={}; shear modulus {:.6g} Pa (elastic)", name_,
-                     law.youngs_modulus, law.poisson_ratio, law.shear_modulus());
+  return name_ + ": " + std::visit([](const auto& law) { return law.description(); }, law_);
 }
 
 const std::vector<std::string>& material_preset_names() {

@@ -1,11 +1,12 @@
 // The tissue material as one value: a choice of law (a std::variant of small value types) plus
 // the name it was built from, so every output can say which material it used.
 //
-// Laws:
+// Laws, each in its own file with the members point_response.hpp lists:
 //  * PolynomialTissue: decoupled polynomial (N = 2) isochoric energy wrapped in a Prony series
-//    (polynomial.hpp, viscoelastic.hpp) plus U(J) = K/2 (J - 1)². Its hyperelastic constants
-//    are INSTANTANEOUS moduli; the long-term shear modulus is g∞ · 2 (C10 + C01).
+//    plus U(J) = K/2 (J - 1)² (polynomial_tissue.hpp).
 //  * CorotationalLinear: paper 000's co-rotational linear elastic tissue (corotational.hpp).
+// A new law is a new file and an entry in MaterialLaw; Material and the element kernel reach it
+// through std::visit only.
 //
 // Every law is a pure function of F, the internal state at the start of the step and the time
 // step; nothing is mutated. Consistent tangents are exact derivatives of the stepped stress,
@@ -17,7 +18,7 @@
 #include <vector>
 
 #include "physics/material/corotational.hpp"
-#include "physics/material/polynomial.hpp"
+#include "physics/material/polynomial_tissue.hpp"
 #include "physics/material/tensor.hpp"
 #include "physics/material/viscoelastic.hpp"
 
@@ -27,12 +28,8 @@ class Case;
 
 namespace needlefem::material {
 
-struct PolynomialTissue {
-  Viscoelastic<PolynomialIsochoric> isochoric;
-  VolumetricQuadratic volumetric;
-};
-
 using MaterialLaw = std::variant<PolynomialTissue, CorotationalLinear>;
+static_assert(PointwiseLaw<PolynomialTissue> && PointwiseLaw<CorotationalLinear>);
 
 struct MaterialPointResult {
   Mat3d first_pk;   // P = F S
@@ -48,9 +45,16 @@ class Material {
   const MaterialLaw& law() const { return law_; }
 
   ViscousState initial_state() const;
+  // Prony terms of the law's internal variables (empty for elastic laws).
+  const std::vector<PronyTerm>& prony() const;
   // Stress at deformation gradient F after a step of length dt (s) from internal state `old`.
   // dt = 0 gives the instantaneous response, dt = +inf the fully relaxed one.
   MaterialPointResult update(const Mat3d& F, const ViscousState& old, double dt) const;
+  // Split laws only: the isochoric S_iso of update() (the volumetric part left out), for
+  // drivers that impose J = 1 and find the pressure from a traction condition instead.
+  Mat3d isochoric_second_pk(const Mat3d& F, const ViscousState& old, double dt) const;
+  // update()'s internal variables alone.
+  ViscousState advance(const Mat3d& F, const ViscousState& old, double dt) const;
   // Consistent tangent A_iJkL = ∂P_iJ/∂F_kL of update()'s first Piola-Kirchhoff stress.
   Tensor4 tangent(const Mat3d& F, const ViscousState& old, double dt) const;
   // Consistent tangent ∂S_IJ/∂E_KL of update()'s second Piola-Kirchhoff stress (minor
@@ -61,7 +65,9 @@ class Material {
 
   // True for laws with an isochoric/volumetric split, whose material-point driver imposes
   // J = 1 exactly (the volumetric part then carries only the constraint pressure).
-  bool incompressible() const { return std::holds_alternative<PolynomialTissue>(law_); }
+  bool incompressible() const {
+    return std::visit([](const auto& law) { return law.kVolumetricSplit; }, law_);
+  }
   double instantaneous_shear_modulus() const;
   double long_term_shear_modulus() const;
   // One line naming the material and all its constants, for logs and output headers.

@@ -31,21 +31,21 @@ double traction_free_lateral_stretch(const Material& material, double stretch, c
 }
 
 // Isochoric stress of a split law mapped to the current configuration: F S_iso Fᵀ (J = 1).
-Mat3d push_forward_isochoric(const PolynomialTissue& tissue, const Mat3d& F, const ViscousState& old, double dt) {
-  return F * tissue.isochoric.stepped_stress(right_cauchy_green(F), old, dt) * transpose(F);
+Mat3d push_forward_isochoric(const Material& material, const Mat3d& F, const ViscousState& old, double dt) {
+  return F * material.isochoric_second_pk(F, old, dt) * transpose(F);
 }
 
 }  // namespace
 
 AxialResponse uniaxial_response(const Material& material, double stretch, const ViscousState& old, double dt) {
   AxialResponse response;
-  if (const auto* tissue = std::get_if<PolynomialTissue>(&material.law())) {
+  if (material.incompressible()) {
     response.lateral_stretch = 1.0 / std::sqrt(stretch);
     const Mat3d F = Mat3d::diagonal(stretch, response.lateral_stretch, response.lateral_stretch);
-    const Mat3d tau = push_forward_isochoric(*tissue, F, old, dt);
+    const Mat3d tau = push_forward_isochoric(material, F, old, dt);
     response.cauchy_stress = tau(0, 0) - tau(1, 1);  // the pressure makes σ22 = 0
     response.nominal_stress = response.cauchy_stress / stretch;
-    response.state = tissue->isochoric.advance(right_cauchy_green(F), old, dt);
+    response.state = material.advance(F, old, dt);
     return response;
   }
   response.lateral_stretch = traction_free_lateral_stretch(material, stretch, old, dt);
@@ -62,10 +62,10 @@ ShearResponse simple_shear_response(const Material& material, double shear, cons
   F(0, 1) = shear;
   ShearResponse response;
   Mat3d cauchy;
-  if (const auto* tissue = std::get_if<PolynomialTissue>(&material.law())) {
-    const Mat3d tau = push_forward_isochoric(*tissue, F, old, dt);
+  if (material.incompressible()) {
+    const Mat3d tau = push_forward_isochoric(material, F, old, dt);
     cauchy = tau - tau(2, 2) * Mat3d::identity();  // the pressure makes σ33 = 0
-    response.state = tissue->isochoric.advance(right_cauchy_green(F), old, dt);
+    response.state = material.advance(F, old, dt);
   } else {
     const MaterialPointResult point = material.update(F, old, dt);
     cauchy = point.first_pk * transpose(F);  // J = 1

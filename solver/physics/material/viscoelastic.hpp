@@ -26,10 +26,30 @@
 
 namespace needlefem::material {
 
+// One term of the series and its rate equation, the only place it is written: the DAE
+// residual, the Newton matrix and its condensation all take it from here.
 struct PronyTerm {
   double g = 0.0;      // relative modulus (fraction of the instantaneous one)
   double tau_s = 1.0;  // relaxation time, s
+
+  // dQ_i/dt = (g_i S⁰_iso - Q_i)/τ_i, for one component of S⁰_iso and Q_i.
+  double rate(double elastic_stress, double q) const { return (g * elastic_stress - q) / tau_s; }
+  // ∂(dQ_i/dt)/∂Q_i = -1/τ_i (times the identity: no coupling between terms or components).
+  double rate_slope() const { return -1.0 / tau_s; }
+  // ∂(dQ_i/dt)/∂S⁰_iso = g_i/τ_i, so ∂(dQ_i/dt)/∂E = (g_i/τ_i) ∂S⁰_iso/∂E.
+  double rate_gain() const { return g / tau_s; }
 };
+
+// The factor of ∂S⁰_iso/∂E left in a Newton matrix J = ∂F/∂y + c_j ∂F/∂y' once the Q_i are
+// condensed out: with J_QQ = c_j - rate_slope and J_Qu = -rate_gain ∂S⁰_iso/∂E B,
+//   1 - Σ_i rate_gain_i / (c_j - rate_slope_i) = 1 - Σ_i g_i/(1 + c_j τ_i)
+// (c_j = +inf: 1, the instantaneous response; c_j = 0: g∞, the relaxed one).
+inline double condensed_fraction(const std::vector<PronyTerm>& terms, double cj) {
+  double fraction = 1.0;
+  if (std::isinf(cj)) return fraction;
+  for (const auto& term : terms) fraction -= term.g / (1.0 + cj * term.tau_s);
+  return fraction;
+}
 
 // Internal state of a viscoelastic material point: one Q_i per Prony term, and the elastic
 // isochoric stress S⁰_iso at the time of the state (the recursion needs its increment).
@@ -59,20 +79,20 @@ struct Viscoelastic {
     for (const auto& q_i : q) s -= lift<T>(q_i);
     return s;
   }
-  // dQ_i/dt for all terms.
+  // dQ_i/dt for all terms (PronyTerm::rate, component by component).
   std::vector<Mat3d> viscous_rate(const Mat3d& C, const std::vector<Mat3d>& q) const {
     const Mat3d s0 = elastic.stress(C);
     std::vector<Mat3d> rate(terms.size());
     for (std::size_t i = 0; i < terms.size(); ++i)
-      rate[i] = (1.0 / terms[i].tau_s) * (terms[i].g * s0 - q[i]);
+      for (int n = 0; n < 9; ++n) rate[i].a[n] = terms[i].rate(s0.a[n], q[i].a[n]);
     return rate;
   }
-  // ∂(dQ_i/dt)/∂Q_i = -1/τ_i times the identity (no coupling between terms).
-  double viscous_rate_dq(std::size_t i) const { return -1.0 / terms[i].tau_s; }
+  // ∂(dQ_i/dt)/∂Q_i, times the identity.
+  double viscous_rate_dq(std::size_t i) const { return terms[i].rate_slope(); }
   // ∂(dQ_i/dt)/∂E = (g_i/τ_i) ∂S⁰_iso/∂E.
   Tensor4 viscous_rate_de(const Mat3d& C, std::size_t i) const {
     Tensor4 d = elastic_tangent(C);
-    for (auto& v : d.a) v *= terms[i].g / terms[i].tau_s;
+    for (auto& v : d.a) v *= terms[i].rate_gain();
     return d;
   }
   // ∂S⁰_iso/∂E (E = (C - I)/2, so dC = 2 dE).

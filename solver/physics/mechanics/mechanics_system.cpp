@@ -200,7 +200,6 @@ void MechanicsSystem::gather_displacement(const double* y, std::size_t tissue_el
 bool MechanicsSystem::assemble_internal(const double* y, const double* ydot, double* f_u, double* f_q,
                                         double* energy) const {
   const int n = mesh_.nodes_per_tet, terms = kernel_.prony_terms();
-  const auto& prony = kernel_.prony();
   std::fill(f_u, f_u + displacement_dofs(), 0.0);
   std::atomic<bool> inverted = false;
   std::vector<double> element_energy(energy ? geometry_.size() : 0);
@@ -209,8 +208,10 @@ bool MechanicsSystem::assemble_internal(const double* y, const double* ydot, dou
     std::array<double, elements::kMaxElementDofs> u_e{};
     gather_displacement(y, k, u_e.data());
     const double* q = terms ? y + viscous_offset(k) : nullptr;
+    // The viscous rows receive the rates dQ/dt first, laid out like Q.
+    double* f_q_element = f_q && terms ? f_q + (viscous_offset(k) - displacement_dofs()) : nullptr;
     const elements::ElementResult element =
-        kernel_.evaluate(geometry_[k], u_e.data(), q, false, 1.0, element_pressure(y, k));
+        kernel_.evaluate(geometry_[k], u_e.data(), q, false, 1.0, element_pressure(y, k), f_q_element);
     if (element.inverted) {
       inverted = true;
       return;
@@ -222,16 +223,10 @@ bool MechanicsSystem::assemble_internal(const double* y, const double* ydot, dou
     // F_p = p - U'(θ), behind the viscous rows.
     if (f_q && pressure_unknowns())
       f_q[viscous_dofs() + static_cast<PetscInt>(k)] = y[pressure_offset() + k] - element.volume_pressure;
-    if (!f_q || !terms) return;
-    // F_Q = Q' - (g S⁰ - Q)/τ, laid out like Q.
-    const PetscInt offset = viscous_offset(k);
-    for (int p = 0; p < geometry_[k].points; ++p)
-      for (int i = 0; i < terms; ++i)
-        for (int m = 0; m < elements::kVoigt; ++m) {
-          const PetscInt row = offset + (static_cast<PetscInt>(p) * terms + i) * elements::kVoigt + m;
-          f_q[row - displacement_dofs()] =
-              ydot[row] - (prony[i].g * element.points[p].elastic_stress[m] - y[row]) / prony[i].tau_s;
-        }
+    if (!f_q_element) return;
+    // F_Q = Q' - dQ/dt.
+    const double* q_rate = ydot + viscous_offset(k);
+    for (PetscInt v = 0; v < viscous_per_element_; ++v) f_q_element[v] = q_rate[v] - f_q_element[v];
   });
   if (energy) *energy = std::accumulate(element_energy.begin(), element_energy.end(), 0.0);
   return !inverted;
@@ -263,7 +258,7 @@ DaeStatus MechanicsSystem::setup_jacobian(double t, Vec y, Vec ydot, double cj) 
   return guarded([&] {
     ReadArray state(y), rate(ydot);
     const int n = mesh_.nodes_per_tet, terms = kernel_.prony_terms();
-    const double scale = kernel_.condensed_tangent_scale(cj);
+    const double scale = material::condensed_fraction(kernel_.prony(), cj);
     if (terms) condensation_.resize(geometry_.size());
     if (pressure_unknowns()) {
       pressure_gradient_.resize(geometry_.size());
@@ -363,7 +358,8 @@ bool MechanicsSystem::newton_matrix_serves(double factored_cj, double cj) const 
   constexpr double kServingTangentChange = 1e-3;
   for (const auto& load : surface_loads_)
     if (load->depends_on_rates()) return false;
-  const double factored = kernel_.condensed_tangent_scale(factored_cj), needed = kernel_.condensed_tangent_scale(cj);
+  const double factored = material::condensed_fraction(kernel_.prony(), factored_cj);
+  const double needed = material::condensed_fraction(kernel_.prony(), cj);
   return std::abs(factored - needed) <= kServingTangentChange * needed;
 }
 
@@ -372,10 +368,11 @@ DaeStatus MechanicsSystem::solve_jacobian(Vec b, Vec x) {
     const int n = mesh_.nodes_per_tet, terms = kernel_.prony_terms();
     const auto& prony = kernel_.prony();
     const PetscInt nu = displacement_dofs();
-    std::vector<double> relaxation(terms), rate_gain(terms);  // 1 / (cj + 1/τ_i), g_i / τ_i
+    // J_QQ⁻¹ = 1 / (cj - ∂rate/∂Q) = 1 / (cj + 1/τ_i) and ∂rate/∂S⁰ = g_i / τ_i (PronyTerm).
+    std::vector<double> relaxation(terms), rate_gain(terms);
     for (int i = 0; i < terms; ++i) {
-      relaxation[i] = 1.0 / (cj_ + 1.0 / prony[i].tau_s);
-      rate_gain[i] = prony[i].g / prony[i].tau_s;
+      relaxation[i] = 1.0 / (cj_ - prony[i].rate_slope());
+      rate_gain[i] = prony[i].rate_gain();
     }
     // Elements with unknowns condensed out of the factored matrix.
     const std::size_t condensed_elements = terms || pressure_unknowns() ? geometry_.size() : 0;

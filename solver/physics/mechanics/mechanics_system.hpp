@@ -8,7 +8,8 @@
 //   F_u = f_int(u, Q, p) - f_ext                   (algebraic; f_ext = 0 in these scenes)
 //       + Σ r_s(t, u, u')                          (registered surface loads, surface_load.hpp)
 //   F_u = u - ū(t)                                 on prescribed dofs (dirichlet.hpp)
-//   F_Q = Q_i' - (g_i S⁰_iso(C) - Q_i) / τ_i      (differential; Simo 1987, Holzapfel 2000 §6.10)
+//   F_Q = Q_i' - dQ_i/dt                           (differential; dQ_i/dt = (g_i S⁰_iso(C) - Q_i)/τ_i from
+//                                                   the material's PronyTerm::rate, viscoelastic.hpp)
 //   F_p = p_e - U'(θ_e),  θ_e = v_e / V_e          (algebraic, mixed element only)
 // with f_int's volumetric part p_e a_e, a_e = ∂v_e/∂u (tet_element.hpp): the two-field u-p
 // form of the mean-dilatation element (Simo, Taylor & Pister 1985), whose solution is the one of
@@ -95,7 +96,7 @@ class MechanicsSystem final : public DaeSystem {
   DaeStatus solve_jacobian(Vec b, Vec x) override;
   long linear_iterations() const override { return solver_->iterations(); }
   // With no rate-dependent surface load, c_j enters the Newton matrix only through the condensed
-  // Prony terms, 1 - Σ g_i/(1 + c_j τ_i) (tet_element.hpp): it serves if that factor changes by
+  // Prony terms, 1 - Σ g_i/(1 + c_j τ_i) (material::condensed_fraction): it serves if that factor changes by
   // less than 1e-3.
   bool newton_matrix_serves(double factored_cj, double cj) const override;
   // Why callbacks asked IDA for a smaller step (DaeStatus::recoverable), counted.
