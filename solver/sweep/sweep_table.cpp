@@ -17,6 +17,7 @@
 #include <fmt/format.h>
 
 #include "case/schema.hpp"
+#include "io_errors/io_errors.hpp"
 
 namespace needlefem::sweep {
 
@@ -250,6 +251,7 @@ void write_text_attribute(hid_t object, const std::string& name, const std::vect
 }
 
 void write_h5(const fs::path& file, const SweepPlan& plan, const std::deque<Column>& columns, std::size_t rows) {
+  io::stop_hdf5_error_printing();  // each failure is reported by H5Id and h5_check
   H5Id h5(H5Fcreate(file.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose, "create " + file.string());
   write_text_attribute(h5, "format", {"needlefem-sweep-table"}, true);
   write_text_attribute(h5, "sweep_file", {plan.sweep_file.string()}, true);

@@ -19,6 +19,12 @@
              (once, HDF5 printed its error stack, the error named summary.json instead, and
              result.xdmf listed a time result_surfaces.xdmf and the summary did not). Skipped
              (exit 77) where a user namespace cannot mount a tmpfs.
+  cannot-create
+             result.h5 cannot be created: --out is a file, result.h5 is a directory, and (on a tmpfs
+             in a user namespace, with room for mesh.msh and a few pages) the disk is full. stderr
+             holds exactly one line naming the path and the exit status is 1 (once, HDF5 printed
+             its error stack when the file it could not finish was closed, then "HDF5: infinite
+             loop closing library" or a SIGSEGV in MPI_Finalize).
 
 Every mode checks the output directory it leaves with check_consistent().
 
@@ -246,15 +252,56 @@ def check_full_disk_mid_run(args, run, failures):
             failures.append(f"{label}: summary.json says {summary.get('status')!r} on a full disk")
 
 
+def check_cannot_create(args, run, failures):
+    def one_line(label, result, path):
+        errors = error_lines(result.stderr)
+        if result.returncode == 0:
+            failures.append(f"{label}: exit 0")
+        if len(errors) != 1 or not errors[0].startswith("needlefem: error: ") or path not in errors[0]:
+            failures.append(f"{label}: expected one line naming {path}, got {errors!r}")
+
+    shutil.rmtree(args.out, ignore_errors=True)
+    os.makedirs(args.out)
+    a_file = os.path.join(args.out, "a_file")
+    with open(a_file, "w") as f:
+        f.write("not a directory\n")
+    one_line("--out is a file", subprocess.run(run + ["--out", a_file], capture_output=True, text=True), a_file)
+    result_directory = os.path.join(args.out, "result_is_a_directory")
+    os.makedirs(os.path.join(result_directory, "result.h5"))
+    one_line("result.h5 is a directory", subprocess.run(run + ["--out", result_directory], capture_output=True,
+                                                        text=True), os.path.join(result_directory, "result.h5"))
+
+    if shutil.which("unshare") is None:
+        print("skipped: no unshare")
+        sys.exit(SKIP)
+    meshed = os.path.join(args.out, "meshed")
+    subprocess.run([args.exe, "mesh", args.case, "--set", "block.element_mm=1", "--out", meshed], check=True,
+                   capture_output=True)
+    page = os.sysconf("SC_PAGE_SIZE")
+    room = -(-os.path.getsize(os.path.join(meshed, "mesh.msh")) // page) * page
+    # Room for mesh.msh and 0, 2 or 8 pages more: result.h5 fails at its creation, at its first
+    # writes, or when it is flushed before the first output time.
+    for extra_pages in (0, 2, 8):
+        label = f"room for mesh.msh and {extra_pages} pages"
+        outcome = run_on_tmpfs(run, os.path.join(args.out, f"full_{extra_pages}"), room + extra_pages * page)
+        if outcome is None:
+            print("skipped: a user namespace cannot mount a tmpfs here")
+            sys.exit(SKIP)
+        status, stderr, mount_point = outcome
+        one_line(label, subprocess.CompletedProcess([], status, "", stderr), os.path.join(mount_point, "result.h5"))
+        if status != 1 or "no space left on device" not in stderr:
+            failures.append(f"{label}: exit {status} (1 expected), the error must say the disk is full: {stderr!r}")
+
+
 parser = argparse.ArgumentParser()
-parser.add_argument("mode", choices=["lock", "disk-full", "interrupt", "full-disk-mid-run"])
+parser.add_argument("mode", choices=["lock", "disk-full", "interrupt", "full-disk-mid-run", "cannot-create"])
 parser.add_argument("--exe", required=True)
 parser.add_argument("--case", required=True)
 parser.add_argument("--out", required=True)
 args = parser.parse_args()
 failures = []
 {"lock": check_lock, "disk-full": check_disk_full, "interrupt": check_interrupt,
- "full-disk-mid-run": check_full_disk_mid_run}[args.mode](
+ "full-disk-mid-run": check_full_disk_mid_run, "cannot-create": check_cannot_create}[args.mode](
     args, [args.exe, "run", args.case, "--set", "block.element_mm=1"], failures)
 for failure in failures:
     print("FAIL:", failure)
