@@ -205,6 +205,13 @@ SweepOutcome run_sweep(const SweepPlan& plan, const SweepOptions& options) {
   progress.line(fmt::format("{} design points ({} impossible); {} to run here, {} already done, {} to run with {} job{}",
                             plan.points.size(), outcome.impossible, outcome.total, outcome.already_done, queue.size(),
                             options.jobs, options.jobs > 1 ? "s" : ""));
+  if (!plan.name_labels.empty()) {
+    std::vector<std::string> legend;
+    for (std::size_t k = 0; k < plan.swept_keys.size(); ++k)
+      legend.push_back(fmt::format("{} = {}", plan.name_labels[k], plan.swept_keys[k]));
+    progress.line(fmt::format("point folders are named by label and value: {}; sweep.csv has each value in a column",
+                              fmt::join(legend, ", ")));
+  }
   if (options.list_only)
     for (std::size_t i : queue) progress.line(fmt::format("to run: {} ({})", plan.points[i].name,
                                                           fmt::join(plan.points[i].grids, ",")));

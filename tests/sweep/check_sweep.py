@@ -13,6 +13,8 @@
   bad      runs tests/sweep/bad_points.toml: impossible points listed on the terminal with their
            rule and in the table as "impossible" with the rule; the run that fails recorded as
            "failed" with its error; the sweep exits 0.
+  list     `sweep --list` of the paper-001 sweep files: the plan is made, point folder names are
+           short and match their values in sweep.csv.
   figures  runs postprocess/sweep_figures.py all and postprocess/render_max_strain.py (pvbatch
            under xvfb-run) on the resume test's sweep: every PNG exists and is not blank; the
            safety map marks each point with its verdict and failing limit.
@@ -128,13 +130,16 @@ def check_table(out, expected_points):
 def resume(args):
     out = pathlib.Path(args.out)
     shutil.rmtree(out, ignore_errors=True)
-    expected = [f"element_mm={e}__ramp_s={r}" for e in ("0.5", "1") for r in ("0.015", "1")]
+    # Point folders: each swept key's label and the point's value (e = block.element_mm, r = loading.ramp_s).
+    expected = [f"e{e}_r{r}" for e in ("0.5", "1") for r in ("0.015", "1")]
     listed = subprocess.run([args.exe, "sweep", str(args.sweep), "--out", str(out), "--list"], capture_output=True,
                             text=True)
     order = [line.split("to run: ")[1].split(" ")[0] for line in listed.stdout.splitlines() + listed.stderr.splitlines()
              if "to run: " in line]
-    check(sorted(order) == sorted(expected) and all("element_mm=0.5" in name for name in order[:2]),
+    check(sorted(order) == sorted(expected) and all(name.startswith("e0.5_") for name in order[:2]),
           f"the longest runs (finest mesh) are started first: {order}")
+    check("point folders are named by label and value: e = block.element_mm, r = loading.ramp_s" in listed.stdout,
+          "the sweep prints what the labels of the point folders stand for")
     shutil.rmtree(out, ignore_errors=True)
     start = time.monotonic()
     first = sweep(args.exe, args.sweep, out, jobs=2, start_new_session=True)
@@ -358,9 +363,37 @@ def full_grid_figures(args):
     check(texts and clashes == 0, f"safety map: {len(texts)} design labels, {clashes} overlapping")
 
 
+def listed(args):
+    """`sweep --list` of the project's paper-001 sweep files: the plan is made (once, two grids'
+    shared point with different motion keys stopped it), the point folders are short and each
+    name is its labels and its values in sweep.csv."""
+    for sweep_file in args.sweep.split(","):
+        out = pathlib.Path(args.out) / pathlib.Path(sweep_file).stem
+        shutil.rmtree(out, ignore_errors=True)
+        result = subprocess.run([args.exe, "sweep", sweep_file, "--out", str(out), "--list"], capture_output=True,
+                                text=True)
+        name = pathlib.Path(sweep_file).name
+        check(result.returncode == 0, f"{name}: --list exits 0 ({result.stderr.strip()[:200]})")
+        if result.returncode != 0:
+            continue
+        legend = [line.split("value: ")[1].split(";")[0] for line in result.stdout.splitlines()
+                  if "point folders are named by label and value: " in line]
+        check(len(legend) == 1, f"{name}: the labels of the point folders are printed")
+        if len(legend) != 1:
+            continue
+        labels = [entry.split(" = ") for entry in legend[0].split(", ")]
+        rows = read_csv(out)
+        longest = max(len(r["point"]) for r in rows)
+        check(longest <= 40, f"{name}: {len(rows)} point folders, the longest {longest} characters")
+        for r in rows:
+            expected = "_".join(label + (r[key] if r[key].replace(".", "").replace("-", "").isdigit() else "-" + r[key])
+                                for label, key in labels)
+            check(r["point"] == expected, f"{name}: folder {r['point']} = its values in sweep.csv ({expected})")
+
+
 def main():
     parser = argparse.ArgumentParser()
-    parser.add_argument("mode", choices=["resume", "bad", "figures", "steering", "full-grid"])
+    parser.add_argument("mode", choices=["resume", "bad", "figures", "steering", "full-grid", "list"])
     parser.add_argument("--exe")
     parser.add_argument("--sweep")
     parser.add_argument("--out", required=True)
@@ -369,7 +402,7 @@ def main():
     parser.add_argument("--render")
     args = parser.parse_args()
     {"resume": resume, "bad": bad, "figures": figures, "steering": steering,
-     "full-grid": full_grid_figures}[args.mode](args)
+     "full-grid": full_grid_figures, "list": listed}[args.mode](args)
     if failures:
         print(f"{len(failures)} check(s) failed")
         return 1
