@@ -18,6 +18,7 @@
 #include <fmt/core.h>
 
 #include "case/case.hpp"
+#include "case/mesh_resolution.hpp"
 #include "integration/blas_threads.hpp"
 #include "integration/case_options.hpp"
 #include "integration/ida_integrator.hpp"
@@ -222,6 +223,8 @@ nlohmann::json summary_json(const Case& c, const material::Material* material, c
                  {"msh_file", scene->msh_file.string()},
                  {"refinement_level", c.integer("mesh.refinement_level")},
                  {"needle_edge_element_mm", scene->info.grading.edge_elements.median}};
+  if (const nlohmann::json resolution = mesh_resolution_json(c); !resolution.is_null())
+    s["mesh_resolution"] = resolution;
   s["files"] = {{"result", "result.h5"}, {"xdmf", "result.xdmf"}, {"history", "history.csv"}};
   s["case"] = c.to_json();
   return s;

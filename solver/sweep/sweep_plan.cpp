@@ -11,6 +11,7 @@
 #include <toml++/toml.h>
 
 #include "case/case.hpp"
+#include "case/mesh_resolution.hpp"
 #include "case/schema.hpp"
 
 namespace needlefem::sweep {
@@ -311,6 +312,7 @@ DesignPoint design_point(const FlatTable& point, std::string name, nlohmann::jso
     const Case c = Case::parse(p.case_text, fmt::format("{} (point {})", origin, p.name));
     p.resolved = c.to_json();
     p.violations = scene_violations(c);
+    p.coarse_mesh = coarser_than_converged(c);
   } catch (const CaseError& e) {
     p.violations = {{"case", e.what()}};
   }

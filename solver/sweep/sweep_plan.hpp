@@ -47,6 +47,7 @@ struct DesignPoint {
   std::string case_text;                  // the point's case file (TOML)
   nlohmann::json resolved;                // Case::to_json() of the point: what its summary.json echoes
   std::vector<RuleViolation> violations;  // non-empty: impossible, not run (rule "case" for key errors)
+  std::vector<std::string> coarse_mesh;   // how its mesh is coarser than the converged setting (case/mesh_resolution.hpp)
   bool valid() const { return violations.empty(); }
 };
 

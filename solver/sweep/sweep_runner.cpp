@@ -18,6 +18,7 @@
 
 #include <fmt/format.h>
 
+#include "case/mesh_resolution.hpp"
 #include "sweep/sweep_table.hpp"
 
 extern char** environ;
@@ -205,6 +206,15 @@ SweepOutcome run_sweep(const SweepPlan& plan, const SweepOptions& options) {
   progress.line(fmt::format("{} design points ({} impossible); {} to run here, {} already done, {} to run with {} job{}",
                             plan.points.size(), outcome.impossible, outcome.total, outcome.already_done, queue.size(),
                             options.jobs, options.jobs > 1 ? "s" : ""));
+  const std::size_t coarse = static_cast<std::size_t>(std::count_if(
+      plan.points.begin(), plan.points.end(), [](const DesignPoint& p) { return p.valid() && !p.coarse_mesh.empty(); }));
+  const std::string coarse_warning =
+      coarse == 0 ? ""
+                  : fmt::format("{} of the {} possible design points: {}", coarse, plan.points.size() - outcome.impossible,
+                                coarse_mesh_warning(std::find_if(plan.points.begin(), plan.points.end(), [](const DesignPoint& p) {
+                                                      return p.valid() && !p.coarse_mesh.empty();
+                                                    })->coarse_mesh));
+  if (!coarse_warning.empty()) progress.line("warning: " + coarse_warning);
   if (!plan.name_labels.empty()) {
     std::vector<std::string> legend;
     for (std::size_t k = 0; k < plan.swept_keys.size(); ++k)
@@ -270,8 +280,9 @@ SweepOutcome run_sweep(const SweepPlan& plan, const SweepOptions& options) {
   const std::string tables = options.write_tables ? fmt::format("; tables {} and {}", (options.out_dir / "sweep.csv").string(),
                                                                  (options.out_dir / "sweep.h5").string())
                                                    : "";
-  progress.line(fmt::format("finished: {} completed, {} failed, {} already done, {} impossible{}", outcome.completed,
-                            outcome.failed, outcome.already_done, outcome.impossible, tables));
+  progress.line(fmt::format("finished: {} completed, {} failed, {} already done, {} impossible{}{}", outcome.completed,
+                            outcome.failed, outcome.already_done, outcome.impossible, tables,
+                            coarse_warning.empty() ? "" : "; warning: " + coarse_warning));
   return outcome;
 }
 

@@ -149,6 +149,8 @@ std::deque<Column> table_columns(const SweepPlan& plan, const fs::path& out_dir)
   for (const auto& limit : kPaperLimits)
     add_verdict(fmt::format("verdict_{}", limit.name), fmt::format("/safety/{}/verdict", limit.name));
   add_verdict("verdict", "/verdict");  // the run's: fail when any limit fails
+  Column& coarse_mesh = add("coarse_mesh", Kind::text);  // empty: the converged setting (or not judged)
+  for (const auto& p : plan.points) coarse_mesh.text.push_back(fmt::format("{}", fmt::join(p.coarse_mesh, "; ")));
 
   // Threshold columns: the union of the names the completed runs report, in first-seen order.
   std::vector<std::vector<std::pair<std::string, std::int8_t>>> results;

@@ -14,7 +14,8 @@
            rule and in the table as "impossible" with the rule; the run that fails recorded as
            "failed" with its error; the sweep exits 0.
   list     `sweep --list` of the paper-001 sweep files: the plan is made, point folder names are
-           short and match their values in sweep.csv.
+           short and match their values in sweep.csv, the quick sweep's coarse mesh is warned of
+           (terminal, coarse_mesh column, safety map title) and the full grid's is not.
   figures  runs postprocess/sweep_figures.py all and postprocess/render_max_strain.py (pvbatch
            under xvfb-run) on the resume test's sweep: every PNG exists and is not blank; the
            safety map marks each point with its verdict and failing limit.
@@ -366,7 +367,10 @@ def full_grid_figures(args):
 def listed(args):
     """`sweep --list` of the project's paper-001 sweep files: the plan is made (once, two grids'
     shared point with different motion keys stopped it), the point folders are short and each
-    name is its labels and its values in sweep.csv."""
+    name is its labels and its values in sweep.csv; the quick sweep's coarse mesh is warned of on
+    the terminal, in the table and in the safety map's title."""
+    sys.path.insert(0, str(pathlib.Path(args.figures).parent))
+    import sweep_figures
     for sweep_file in args.sweep.split(","):
         out = pathlib.Path(args.out) / pathlib.Path(sweep_file).stem
         shutil.rmtree(out, ignore_errors=True)
@@ -385,6 +389,20 @@ def listed(args):
         rows = read_csv(out)
         longest = max(len(r["point"]) for r in rows)
         check(longest <= 40, f"{name}: {len(rows)} point folders, the longest {longest} characters")
+        # The quick sweep's coarse mesh is said beside every verdict: a warning when the sweep starts
+        # and a coarse_mesh column naming the sizes; the full grid at the paper's mesh has neither.
+        quick = "quick" in name
+        coarse = "tissue.core_element_mm = 1 mm > 0.4 mm; tissue.outer_element_mm = 3 mm > 2 mm"
+        possible = [r for r in rows if r["status"] != "impossible"]
+        check(all(r["coarse_mesh"] == (coarse if quick else "") for r in possible),
+              f"{name}: coarse_mesh column {'names the coarse sizes' if quick else 'empty'} on every possible point")
+        warned = [line for line in result.stdout.splitlines() if "warning: " in line]
+        check(len(warned) == 1 and f"24 of the 24 possible design points: mesh coarser than the converged setting"
+              in warned[0] if quick else not warned, f"{name}: coarse-mesh warning {warned}")
+        fig = sweep_figures.safety_map(sweep_figures.Sweep(out), out / "safety_map.png")
+        title = " ".join([fig._suptitle.get_text()] + [t.get_text() for t in fig.texts])
+        check(("Warning: 24 of 24 designs on a mesh coarser than the converged setting" in title.replace("\n", " "))
+              == quick, f"{name}: the safety map's title warns of the coarse mesh exactly when it is: {title!r}")
         for r in rows:
             expected = "_".join(label + (r[key] if r[key].replace(".", "").replace("-", "").isdigit() else "-" + r[key])
                                 for label, key in labels)
