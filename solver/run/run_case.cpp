@@ -230,6 +230,16 @@ nlohmann::json summary_json(const Case& c, const material::Material* material, c
   return s;
 }
 
+// summary.json while the run is under way: replaced by the final summary when it ends.
+nlohmann::json running_summary_json(const Case& c) {
+  return {{"case_file", c.origin()},
+          {"status", "running"},
+          {"note", "written when the run started and replaced when it ends; left like this, the run was killed: "
+                   "result.h5's /series/time_count counts its complete output times (result.xdmf lists them, or "
+                   "one fewer when the kill fell between the two)"},
+          {"case", c.to_json()}};
+}
+
 void print_progress(std::FILE* stream, double t, double end, const IdaCounters& k, double integration_s) {
   if (!stream) return;
   const double eta = t > 0.0 ? integration_s * (end - t) / t : 0.0;
@@ -247,7 +257,9 @@ nlohmann::json run_case(const Case& c, const RunOptions& options) {
   std::filesystem::create_directories(options.out_dir);
   const OutputDirectoryLock owned(options.out_dir);
   const auto summary_file = options.out_dir / "summary.json";
-  std::filesystem::remove(summary_file);  // a stale summary must not describe this run
+  // Until the run ends, summary.json says it is running (replacing a stale one), so that a run
+  // killed outright (SIGKILL, a power cut) leaves a summary that claims nothing it did not finish.
+  write_json_atomically(summary_file, running_summary_json(c));
 
   RunRecord record;
   std::unique_ptr<SceneModel> scene;
@@ -398,6 +410,8 @@ nlohmann::json run_case(const Case& c, const RunOptions& options) {
     try {
       write_json_atomically(summary_file, failed);
     } catch (const std::exception& summary_error) {  // a full disk: say both, in one line
+      std::error_code ignored;  // "running" would tell of a kill: better no summary than a wrong one
+      std::filesystem::remove(summary_file, ignored);
       throw std::runtime_error(fmt::format("{} (and no summary.json: {})", e.what(), summary_error.what()));
     }
     throw;

@@ -314,6 +314,7 @@ PointRecord read_point(const DesignPoint& point, const fs::path& out_dir) {
     return {"pending", nullptr, ""};
   const std::string status = summary.value("status", "");
   if (status == "completed") return {status, summary, ""};
+  if (status == "running") return {"pending", nullptr, ""};  // its run was killed: run it again
   return {"failed", summary, summary.value("error", "no error message")};
 }
 
