@@ -27,6 +27,7 @@ import json
 import math
 import os
 import pathlib
+import re
 import shutil
 import signal
 import subprocess
@@ -257,6 +258,40 @@ def figures(args):
     shown = [float(w.split()[-4]) for w in result.stdout.splitlines() if w.startswith("wrote ")]
     check(len(shown) == 1 and field_max * (1 - 1e-3) <= shown[0] <= field_max * (1 + 1e-5),
           f"the rendered field is max_over_time_log_strain at the last time ({shown} vs {field_max:.7g})")
+    check_scale_bar(png, result.stdout, block_mm=1.0)  # cases/block_uniaxial.toml: a 1 mm cube
+
+
+def longest_run(mask):
+    """(start, length) of the longest run of True in a 1-D boolean array."""
+    best, start = (0, 0), None
+    for i, value in enumerate(list(mask) + [False]):
+        if value and start is None:
+            start = i
+        elif not value and start is not None:
+            best = max(best, (i - start, start))
+            start = None
+    return best[1], best[0]
+
+
+def check_scale_bar(png, stdout, block_mm):
+    """The render's scale bar is drawn where the script says, and its length in pixels is its
+    length in mm at the scale of the rendered field (the 1 mm block's cut, measured in the image)."""
+    import matplotlib.image
+    said = [line for line in stdout.splitlines() if line.startswith("scale bar ")]
+    check(len(said) == 1, f"the render states its scale bar: {said}")
+    if len(said) != 1:
+        return
+    numbers = re.findall(r"[-+0-9.]+", said[0])
+    length_mm, x, y, pixels = float(numbers[0]), int(numbers[1]), int(numbers[2]), float(numbers[3])
+    image = matplotlib.image.imread(png)[..., :3].mean(axis=2)
+    field_start, field_pixels = longest_run(image[image.shape[0] // 2] < 0.95)  # the field, left to right
+    dark = [longest_run(image[row] < 0.3) for row in range(y - 6, y + 7)]
+    start, drawn = max(dark, key=lambda run: run[1])
+    expected = length_mm / block_mm * field_pixels
+    check(abs(start - x) <= 3 and abs(drawn - pixels) <= 4 and abs(drawn - expected) <= 0.01 * expected + 4,
+          f"scale bar {length_mm:g} mm drawn {drawn} px from x = {start} (said {pixels:.0f} px from {x}; the "
+          f"{block_mm:g} mm field is {field_pixels} px wide, so {expected:.0f} px)")
+    check(length_mm == 0.2, f"scale bar {length_mm:g} mm: the largest 1-2-5 length within a quarter of the field")
 
 
 def steering(args):
