@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <functional>
 #include <map>
 #include <set>
 #include <sstream>
@@ -240,24 +239,28 @@ std::vector<std::string> key_words(const std::string& key) {
   return words;
 }
 
+// The labels of the swept keys in point names: their initials; keys whose initials clash get their
+// words, and keys whose words still clash the whole key.
 std::vector<std::string> name_labels(const std::vector<std::string>& keys) {
-  const auto initials = [](const std::string& key) {
+  using Label = std::string (*)(const std::string&);
+  const Label initials = [](const std::string& key) {
     std::string out;
     for (const auto& word : key_words(key)) out += word.front();
     return out;
   };
-  const auto words = [](const std::string& key) { return fmt::format("{}", fmt::join(key_words(key), "-")); };
-  const auto whole = [](std::string key) {
-    std::replace(key.begin(), key.end(), '.', '-');
-    return key;
+  const Label words = [](const std::string& key) { return fmt::format("{}", fmt::join(key_words(key), "-")); };
+  const Label whole = [](const std::string& key) {
+    std::string out = key;
+    std::replace(out.begin(), out.end(), '.', '-');
+    return out;
   };
   std::vector<std::string> labels;
   for (const auto& key : keys) labels.push_back(initials(key));
-  for (const auto& shorter : {std::function<std::string(const std::string&)>(words), std::function<std::string(const std::string&)>(whole)}) {
+  for (const Label longer : {words, whole}) {
     std::map<std::string, int> uses;
     for (const auto& label : labels) ++uses[label];
     for (std::size_t k = 0; k < keys.size(); ++k)
-      if (uses[labels[k]] > 1) labels[k] = shorter(keys[k]);
+      if (uses[labels[k]] > 1) labels[k] = longer(keys[k]);
   }
   return labels;
 }

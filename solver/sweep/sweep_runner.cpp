@@ -170,6 +170,22 @@ double expected_cost(const DesignPoint& p) {
   return number("motion", "duration_s") / (element * element * element);
 }
 
+// How many possible design points are on a mesh coarser than the converged setting
+// (case/mesh_resolution.hpp), with the first one's sizes; "" when none is.
+std::string coarse_mesh_summary(const SweepPlan& plan) {
+  std::size_t possible = 0, coarse = 0;
+  const DesignPoint* first = nullptr;
+  for (const auto& p : plan.points) {
+    if (!p.valid()) continue;
+    ++possible;
+    if (p.coarse_mesh.empty()) continue;
+    ++coarse;
+    if (!first) first = &p;
+  }
+  if (!first) return "";
+  return fmt::format("{} of the {} possible design points: {}", coarse, possible, coarse_mesh_warning(first->coarse_mesh));
+}
+
 }  // namespace
 
 SweepOutcome run_sweep(const SweepPlan& plan, const SweepOptions& options) {
@@ -206,14 +222,7 @@ SweepOutcome run_sweep(const SweepPlan& plan, const SweepOptions& options) {
   progress.line(fmt::format("{} design points ({} impossible); {} to run here, {} already done, {} to run with {} job{}",
                             plan.points.size(), outcome.impossible, outcome.total, outcome.already_done, queue.size(),
                             options.jobs, options.jobs > 1 ? "s" : ""));
-  const std::size_t coarse = static_cast<std::size_t>(std::count_if(
-      plan.points.begin(), plan.points.end(), [](const DesignPoint& p) { return p.valid() && !p.coarse_mesh.empty(); }));
-  const std::string coarse_warning =
-      coarse == 0 ? ""
-                  : fmt::format("{} of the {} possible design points: {}", coarse, plan.points.size() - outcome.impossible,
-                                coarse_mesh_warning(std::find_if(plan.points.begin(), plan.points.end(), [](const DesignPoint& p) {
-                                                      return p.valid() && !p.coarse_mesh.empty();
-                                                    })->coarse_mesh));
+  const std::string coarse_warning = coarse_mesh_summary(plan);
   if (!coarse_warning.empty()) progress.line("warning: " + coarse_warning);
   if (!plan.name_labels.empty()) {
     std::vector<std::string> legend;
