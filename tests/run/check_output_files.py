@@ -307,6 +307,13 @@ def running_summary_size(run, out):
     return os.path.getsize(summary_file)
 
 
+def skip_rest(reason, failures):
+    """Skips the rest of a mode: the test is skipped unless what ran before failed."""
+    print(f"skipped the rest: {reason}")
+    if not failures:
+        sys.exit(SKIP)
+
+
 def check_cannot_create(args, run, failures):
     def one_line(label, result, path):
         errors = error_lines(result.stderr)
@@ -327,8 +334,7 @@ def check_cannot_create(args, run, failures):
                                                         text=True), os.path.join(result_directory, "result.h5"))
 
     if shutil.which("unshare") is None:
-        print("skipped: no unshare")
-        sys.exit(SKIP)
+        return skip_rest("no unshare", failures)
     meshed = os.path.join(args.out, "meshed")
     subprocess.run([args.exe, "mesh", args.case, "--set", "block.element_mm=1", "--out", meshed], check=True,
                    capture_output=True)
@@ -342,8 +348,7 @@ def check_cannot_create(args, run, failures):
         label = f"room for mesh.msh and {extra_pages} pages"
         outcome = run_on_tmpfs(run, os.path.join(args.out, f"full_{extra_pages}"), room + extra_pages * page)
         if outcome is None:
-            print("skipped: a user namespace cannot mount a tmpfs here")
-            sys.exit(SKIP)
+            return skip_rest("a user namespace cannot mount a tmpfs here", failures)
         status, stderr, mount_point = outcome
         one_line(label, subprocess.CompletedProcess([], status, "", stderr), os.path.join(mount_point, "result.h5"))
         if status != 1 or "no space left on device" not in stderr:
