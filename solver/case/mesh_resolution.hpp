@@ -7,7 +7,8 @@
 // setting is adequate. Nothing coarser was shown to give the same verdicts: the safety map of
 // paper 001's quick sweep (1 mm core, 3 mm outside) showed five safe designs where the 0.4 mm
 // grid's showed one (issue #29). A run or sweep point on a coarser mesh says so beside its verdict
-// (summary.json "mesh_resolution", the run's verdict line, the sweep's coarse_mesh column).
+// (summary.json "mesh_resolution", the verdict lines of run and converge, the sweep's warning
+// and coarse_mesh column).
 // Only the generated brain-tip mesh was studied: the block scene and user meshes (scene.mesh_file)
 // are not judged.
 #pragma once
