@@ -6,8 +6,8 @@ The install and whole-suite commands (INSTALLS) are skipped; every other command
 in the README's order, with bash, in a scratch project root laid out as a fresh clone after
 scripts/setup.sh (the source tree's folders linked in, build/ the build tree, no out/). The
 environment variable NEEDLEFEM_SET (solver/case/case.hpp) makes every case small: a coarse linear
-mesh, tied contact and one output time after the start, so that the workflows take about a minute. A command that
-exits non-zero, or a README with fewer commands than its workflows have, fails the test.
+mesh, tied contact and one output time after the start. A command that exits non-zero, or a README
+with fewer commands than its workflows have, fails the test.
 
 usage: check_readme.py --readme README.md --source SOURCE_DIR --build BUILD_DIR --root SCRATCH_DIR
 """
