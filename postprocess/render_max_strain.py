@@ -11,12 +11,14 @@ brain-tip scene (a block, which does not contain y = 0 inside, is cut through it
 cells are coloured by the field, the needle's cells (region "needle", when meshed) grey. The
 view is parallel, insertion axis to the right, `--window-mm` wide around the needle tip
 (default: three tip lengths when the needle is meshed, else the whole cut). Colour range 0 .. max of the field unless --max is given.
+A scale bar under the field gives lengths in millimetres (a round length near a quarter of the
+field's width); the script's last line states it and where it is drawn, in pixels.
 """
 import argparse
 import os
 import sys
 
-from paraview.simple import (Clip, ColorBy, CreateView, GetColorTransferFunction, GetScalarBar, Show, Slice,
+from paraview.simple import (Clip, ColorBy, CreateView, GetColorTransferFunction, GetScalarBar, Ruler, Show, Slice,
                              SaveScreenshot, Text, Threshold, Xdmf3ReaderS)
 
 NORMALS = {"x": [1.0, 0.0, 0.0], "y": [0.0, 1.0, 0.0], "z": [0.0, 0.0, 1.0]}
@@ -118,7 +120,8 @@ def main():
     flip = right[h_axis]  # +1: the axis grows to the right
     bounds = cut.GetDataInformation().GetBounds()
     aspect = args.size[1] / args.size[0]
-    field_width, field_height = 0.80, 0.90  # fractions of the image the field fills
+    field_width, field_height = 0.80, 0.82  # fractions of the image the field fills
+    ruler_band = 0.08  # under the field: the scale bar
     h_extent, v_extent = bounds[2 * h_axis + 1] - bounds[2 * h_axis], bounds[2 * v_axis + 1] - bounds[2 * v_axis]
     window = args.window_mm or (3.0 * needle_length if needle_length > 0 else h_extent)
     width = min(window, h_extent)  # world width of the field, then its height at the image's aspect
@@ -138,7 +141,7 @@ def main():
     screen_left = min(flip * h_low, flip * h_high)
     centre = list(origin)
     centre[h_axis] = flip * (screen_left + view_width / 2)
-    centre[v_axis] = v_low + view_height / 2
+    centre[v_axis] = v_low - ruler_band * view_height + view_height / 2
     def crop(source):
         """The framed part of a cut, shown in its place: the bands around it stay white."""
         box = Clip(Input=source)
@@ -171,6 +174,23 @@ def main():
     view.CameraViewUp = up
     view.CameraParallelScale = view_height / 2
 
+    # Scale bar: 1, 2 or 5 x 10^k mm, the largest not above a quarter of the field's width, from
+    # the field's left edge, in the middle of the band under it.
+    ruler_mm = max(m * 10.0 ** k for k in range(-3, 4) for m in (1, 2, 5) if m * 10.0 ** k <= width / 4)
+    ruler = Ruler()
+    start, end = list(origin), list(origin)
+    start[v_axis] = end[v_axis] = v_low - ruler_band * view_height / 2
+    start[h_axis] = flip * (screen_left + 0.02 * view_width)
+    end[h_axis] = start[h_axis] + flip * ruler_mm
+    ruler.Point1, ruler.Point2 = start, end
+    ruler_shown = Show(ruler, view)
+    ruler_shown.AxisColor = ruler_shown.Color = [0.0, 0.0, 0.0]
+    ruler_shown.AxisLineWidth = 3.0
+    ruler_shown.LabelFormat = "%g mm"
+    ruler_shown.FontSize = 14
+    pixels_per_mm = args.size[0] / view_width
+    ruler_pixels = (round(0.02 * args.size[0]), round(args.size[1] * (1 - ruler_band / 2)), ruler_mm * pixels_per_mm)
+
     unit = information(xdmf, f"unit:{args.field}") or "?"  # the writer states each field's unit
     bar.Title = f"{args.field.replace('_', ' ')} [{unit}]"
     bar.ComponentTitle = ""
@@ -189,6 +209,7 @@ def main():
     title_shown.WindowLocation = "Upper Center"
     SaveScreenshot(png, view, ImageResolution=args.size)
     print(f"wrote {png} ({args.field} max {field_range[1]:.6g} on the cut)")
+    print("scale bar {:g} mm: from pixel x = {}, y = {}, {:.1f} pixels long".format(ruler_mm, *ruler_pixels))
 
 
 if __name__ == "__main__":

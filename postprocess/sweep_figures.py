@@ -17,7 +17,9 @@ usage: /usr/bin/python3 postprocess/sweep_figures.py COMMAND ARGS [--png OUT.png
                                       each design's verdict (pass/fail: the critical-distance values
                                       against the limits, labelled with the limits that fail), run
                                       failed or impossible, over two swept keys (default: the first two
-                                      that vary), one panel per value of the other swept keys
+                                      that vary), one panel per value of the other swept keys; titled
+                                      with a warning when designs are on a mesh coarser than the
+                                      converged setting (also safety-steering)
   safety-steering SWEEP_DIR [--grid G]
                                       the designer's trade-off: each limit's safety margin
                                       1 - (critical-distance value)/limit against the largest lateral
@@ -83,6 +85,18 @@ class Sweep:
 
     def history(self, i):
         return read_history(self.dir / self.table["point"][i])
+
+    def coarse_mesh_warning(self, rows):
+        """The caption a verdict figure of these rows carries when any design among them is on a mesh
+        coarser than the converged setting (column coarse_mesh, solver/case/mesh_resolution.hpp);
+        "" when none is (or the table predates the column)."""
+        column = self.table.get("coarse_mesh")
+        designs = [i for i in rows if self.table["status"][i] != "impossible"]
+        coarse = [column[i] for i in designs if column is not None and column[i]]
+        if not coarse:
+            return ""
+        return (f"Warning: {len(coarse)} of {len(designs)} designs on a mesh coarser than the converged setting "
+                f"({coarse[0]}): their verdicts may change on a finer mesh (docs/accuracy.md section 4)")
 
     def limits(self):
         for i in self.indices():
@@ -342,11 +356,18 @@ def safety_map(sweep, png, x=None, y=None, grid=None):
     for ax in list(axes.flat)[len(panels):]:
         ax.axis("off")
     handles = [plt.Line2D([], [], ls="none", ms=9, label=s, **styles[s]) for s in styles if s in seen]
-    fig.tight_layout(rect=(0, 0, 1, 0.93))
-    fig.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.0, 0.93), fontsize=8)
-    fig.suptitle(textwrap.fill("Verdict per design: critical-distance values against the limits (letters: the "
-                               "failing limits or violated geometry rules below)", 40 * columns), fontsize=10, x=0.02,
-                 ha="left")
+    title = textwrap.fill("Verdict per design: critical-distance values against the limits (letters: the failing "
+                          "limits or violated geometry rules below)", 40 * columns)
+    warning = textwrap.fill(sweep.coarse_mesh_warning(rows), 40 * columns)
+    # Room above the panels for the title and the warning: about 0.2 inch a line.
+    title_lines = title.count("\n") + 1 + (warning.count("\n") + 1 if warning else 0)
+    top = 1 - (0.15 + 0.2 * title_lines) / fig.get_figheight()
+    fig.tight_layout(rect=(0, 0, 1, top))
+    fig.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.0, top), fontsize=8)
+    fig.suptitle(title, fontsize=10, x=0.02, ha="left")
+    if warning:
+        fig.text(0.02, 1 - (0.1 + 0.2 * (title.count("\n") + 1)) / fig.get_figheight(), warning, fontsize=10,
+                 ha="left", va="top", color="#d62728")
     if notes:
         fig.text(0.02, 0.0, "\n".join(textwrap.fill(f"{letter}: {note}", 45 * columns) for note, letter in notes.items()),
                  fontsize=7, va="top", ha="left")
@@ -388,6 +409,9 @@ def safety_steering(sweep, png, grid=None):
         fig.subplots_adjust(bottom=0.12 + 0.035 * math.ceil(len(labels) / 4))
     fig.suptitle("Safety beside steering: o critical-distance margin (filled = pass), x point-maximum margin",
                  fontsize=10)
+    warning = sweep.coarse_mesh_warning(points)
+    if warning:
+        fig.text(0.5, 1.0, textwrap.fill(warning, 150), fontsize=10, ha="center", va="bottom", color="#d62728")
     png = pathlib.Path(png)
     png.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(png, dpi=130, bbox_inches="tight")

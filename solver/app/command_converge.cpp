@@ -5,7 +5,8 @@
 // concurrent `needlefem run` children, DIR/level_<L>/run.log and summary.json), then estimates
 // each summary metric's observed order, Richardson value and GCI band on the three finest levels
 // (convergence/convergence_report.hpp) and writes DIR/converge.csv and DIR/converge.json. Prints
-// one verdict line per run: pass, fail or undecided per safety limit. A level that fails makes the
+// one verdict line per run: pass, fail or undecided per safety limit, followed on a mesh coarser than
+// the converged setting by the warning of case/mesh_resolution.hpp. A level that fails makes the
 // command fail with one line naming it, after writing what the other levels gave.
 #include <algorithm>
 #include <filesystem>
@@ -15,6 +16,7 @@
 
 #include "app/commands.hpp"
 #include "case/case.hpp"
+#include "case/mesh_resolution.hpp"
 #include "case/schema.hpp"
 #include "convergence/convergence_report.hpp"
 #include "sweep/sweep_runner.hpp"
@@ -78,7 +80,9 @@ void converge_command(const ConvergeOptions& options) {
                                          (run.out_dir / failed->directory / "run.log").string(),
                                          (run.out_dir / "converge.json").string()));
   for (const auto& warning : report.warnings) fmt::print("converge: warning: {}\n", warning);
-  fmt::print("{}\n", convergence::verdict_line(report));
+  // Refinement halves the sizes near the needle only: a coarse core stays coarse at every level.
+  const std::string mesh_warning = coarse_mesh_warning(plan.points.front().coarse_mesh);
+  fmt::print("{}{}\n", convergence::verdict_line(report), mesh_warning.empty() ? "" : "; " + mesh_warning);
 }
 
 }  // namespace

@@ -51,8 +51,10 @@ void add_sweep_command(CLI::App& app) {
   command->add_flag("--list", options->list_only,
                     "List the design points (impossible ones with their rule), write the table, run nothing");
   command->footer(
-      "A restarted sweep skips every point whose summary.json says completed for the same case. "
-      "Under `mpirun -n R` each rank runs every R-th point; the table is shared.");
+      "A point's folder is named by its values after short labels of the swept keys (r0.5_b20_f0.25: the sweep "
+      "prints what each label stands for); sweep.csv has every value in a column. A restarted sweep skips every "
+      "point whose summary.json says completed for the same case. Under `mpirun -n R` each rank runs every R-th "
+      "point; the table is shared.");
   command->callback([options] { sweep_command(*options); });
 }
 

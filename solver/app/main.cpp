@@ -16,6 +16,7 @@
 #include "app/commands.hpp"
 #include "integration/blas_threads.hpp"
 #include "interrupt/interrupt_guard.hpp"
+#include "io_errors/io_errors.hpp"
 
 namespace needlefem::app {
 
@@ -82,6 +83,7 @@ int main(int argc, char** argv) {
   for (const auto& [variable, value] : {std::pair{"OPENBLAS_NUM_THREADS", "1"}, std::pair{"OPENBLAS_CORETYPE", blas_core}})
     if (value && !std::getenv(variable)) restart = setenv(variable, value, 1) == 0 || restart;
   if (restart) execv("/proc/self/exe", argv);  // returns only on failure: then run on with the defaults
+  io::start_hdf5_without_termination();  // before MPI: io_errors.hpp
   // Everything after a bare "--" belongs to PETSc/SUNDIALS, untouched.
   std::vector<std::string> args(argv + 1, argv + argc);
   std::vector<std::string> own;

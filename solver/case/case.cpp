@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <map>
@@ -142,8 +143,17 @@ class Checker {
 };
 
 // "key=value": the value is read as TOML, or taken as a bare string for text/choice keys.
-void apply_override(const std::string& assignment, Case::Values& into) {
-  const Checker checker("--set " + assignment);
+// The assignments of NEEDLEFEM_SET, separated by white space.
+std::vector<std::string> environment_overrides() {
+  std::vector<std::string> assignments;
+  const char* text = std::getenv(kEnvironmentOverrides);
+  std::istringstream words(text ? text : "");
+  for (std::string word; words >> word;) assignments.push_back(word);
+  return assignments;
+}
+
+void apply_override(const std::string& assignment, Case::Values& into, const std::string& source) {
+  const Checker checker(source + " " + assignment);
   const auto eq = assignment.find('=');
   if (eq == std::string::npos || eq == 0) checker.fail(assignment, "expected KEY=VALUE");
   const std::string key = assignment.substr(0, eq), raw = assignment.substr(eq + 1);
@@ -225,15 +235,21 @@ Case Case::parse(const std::string& toml_text, const std::string& origin, const 
                                 e.source().begin.column, e.description()));
   }
   checker.flatten(table, "", *values);
-  Values set;
-  for (const auto& assignment : overrides) apply_override(assignment, set);
-  if (std::any_of(set.given.begin(), set.given.end(), states_motion_length))
-    for (const auto& key : motion_length_keys()) {
-      values->values.erase(key);
-      values->given.erase(key);
-    }
-  for (auto& [key, value] : set.values) values->values[key] = std::move(value);
-  values->given.insert(set.given.begin(), set.given.end());
+  // A layer of overrides replaces the values below it; one that states the motion's length drops
+  // the lower layers' statements of it (motion_length_keys).
+  const auto apply_layer = [&](const std::vector<std::string>& assignments, const std::string& source) {
+    Values set;
+    for (const auto& assignment : assignments) apply_override(assignment, set, source);
+    if (std::any_of(set.given.begin(), set.given.end(), states_motion_length))
+      for (const auto& key : motion_length_keys()) {
+        values->values.erase(key);
+        values->given.erase(key);
+      }
+    for (auto& [key, value] : set.values) values->values[key] = std::move(value);
+    values->given.insert(set.given.begin(), set.given.end());
+  };
+  apply_layer(overrides, "--set");
+  apply_layer(environment_overrides(), kEnvironmentOverrides);
   for (const auto& spec : case_schema())
     if (!values->values.count(spec.key) && !std::holds_alternative<std::monostate>(spec.fallback))
       values->values[spec.key] = default_value(spec);

@@ -34,10 +34,17 @@ std::string read_input_file(const std::filesystem::path& file, const std::string
 const std::vector<std::string>& motion_length_keys();
 bool states_motion_length(const std::string& key);
 
+// The environment variable whose "KEY=VALUE" words (separated by white space) override every case
+// the process (and the runs it starts) loads, after --set: a whole workflow on other settings
+// without editing its commands, e.g. NEEDLEFEM_SET="tissue.core_element_mm=1.5 motion.duration_s=0.001"
+// (how tests/readme runs the README's commands on small settings). The resolved case echoes them.
+inline constexpr const char* kEnvironmentOverrides = "NEEDLEFEM_SET";
+
 class Case {
  public:
-  // Reads and validates a TOML case file, then applies "key=value" overrides (from --set).
-  // Throws CaseError naming the file (or "--set"), the key and the reason.
+  // Reads and validates a TOML case file, then applies "key=value" overrides (from --set), then
+  // those of NEEDLEFEM_SET. Throws CaseError naming the file (or "--set", "NEEDLEFEM_SET"), the key
+  // and the reason.
   static Case load(const std::filesystem::path& file, const std::vector<std::string>& overrides = {});
   // Validates a TOML document given as text; `origin` names it in error messages.
   static Case parse(const std::string& toml_text, const std::string& origin,

@@ -6,12 +6,12 @@
 
 namespace needlefem::io {
 
-QuietHdf5Errors::QuietHdf5Errors() {
-  H5Eget_auto2(H5E_DEFAULT, &function_, &data_);
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-}
+void stop_hdf5_error_printing() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
 
-QuietHdf5Errors::~QuietHdf5Errors() { H5Eset_auto2(H5E_DEFAULT, function_, data_); }
+void start_hdf5_without_termination() {
+  H5dont_atexit();
+  H5open();
+}
 
 std::string hdf5_failure_reason() {
   struct Found {

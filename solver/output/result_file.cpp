@@ -25,10 +25,10 @@ struct Hdf5Failure : std::runtime_error {
       : std::runtime_error(fmt::format("cannot {}: {}", what, io::hdf5_failure_reason())) {}
 };
 
-// Runs `body` with HDF5's own error printing off; an HDF5 failure is reported under `path`.
+// Runs `body` with HDF5's own error printing off (io_errors.hpp); an HDF5 failure is reported under `path`.
 template <class Body>
 void with_path(const std::filesystem::path& path, Body&& body) {
-  const io::QuietHdf5Errors quiet;
+  io::stop_hdf5_error_printing();
   try {
     body();
   } catch (const Hdf5Failure& failure) {

@@ -190,7 +190,7 @@ void write_trajectory(const std::filesystem::path& file, const Trajectory& t) {
   validate_trajectory(t, name);
   const std::filesystem::path partial = file.string() + ".tmp";
   {
-    io::QuietHdf5Errors quiet;
+    io::stop_hdf5_error_printing();
     Hid file_id(H5Fcreate(partial.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
     if (!file_id.valid()) throw TrajectoryError(fmt::format("{}: cannot create file", partial.string()));
     write_string_attribute(file_id.get(), "format", trajectory_format_name, name);
@@ -220,7 +220,7 @@ void write_trajectory(const std::filesystem::path& file, const Trajectory& t) {
 
 Trajectory read_trajectory(const std::filesystem::path& file) {
   const std::string name = file.string();
-  io::QuietHdf5Errors quiet;
+  io::stop_hdf5_error_printing();
   if (!std::filesystem::exists(file)) throw TrajectoryError(fmt::format("{}: no such file", name));
   if (H5Fis_hdf5(file.c_str()) <= 0) throw TrajectoryError(fmt::format("{}: not an HDF5 file", name));
   Hid file_id(H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);

@@ -18,6 +18,7 @@
 #include <fmt/core.h>
 
 #include "case/case.hpp"
+#include "case/mesh_resolution.hpp"
 #include "integration/blas_threads.hpp"
 #include "integration/case_options.hpp"
 #include "integration/ida_integrator.hpp"
@@ -223,9 +224,21 @@ nlohmann::json summary_json(const Case& c, const material::Material* material, c
                  {"msh_file", scene->msh_file.string()},
                  {"refinement_level", c.integer("mesh.refinement_level")},
                  {"needle_edge_element_mm", scene->info.grading.edge_elements.median}};
+  if (const nlohmann::json resolution = mesh_resolution_json(c); !resolution.is_null())
+    s["mesh_resolution"] = resolution;
   s["files"] = {{"result", "result.h5"}, {"xdmf", "result.xdmf"}, {"history", "history.csv"}};
   s["case"] = c.to_json();
   return s;
+}
+
+// summary.json while the run is under way: replaced by the final summary when it ends.
+nlohmann::json running_summary_json(const Case& c) {
+  return {{"case_file", c.origin()},
+          {"status", "running"},
+          {"note", "written when the run started and replaced when it ends; left like this, the run was killed: "
+                   "result.h5's /series/time_count counts its complete output times (result.xdmf lists them, or "
+                   "one fewer when the kill fell between the two)"},
+          {"case", c.to_json()}};
 }
 
 void print_progress(std::FILE* stream, double t, double end, const IdaCounters& k, double integration_s) {
@@ -245,7 +258,9 @@ nlohmann::json run_case(const Case& c, const RunOptions& options) {
   std::filesystem::create_directories(options.out_dir);
   const OutputDirectoryLock owned(options.out_dir);
   const auto summary_file = options.out_dir / "summary.json";
-  std::filesystem::remove(summary_file);  // a stale summary must not describe this run
+  // Until the run ends, summary.json says it is running (replacing a stale one), so that a run
+  // killed outright (SIGKILL, a power cut) leaves a summary that claims nothing it did not finish.
+  write_json_atomically(summary_file, running_summary_json(c));
 
   RunRecord record;
   std::unique_ptr<SceneModel> scene;
@@ -400,6 +415,8 @@ nlohmann::json run_case(const Case& c, const RunOptions& options) {
     try {
       write_json_atomically(summary_file, failed);
     } catch (const std::exception& summary_error) {  // a full disk: say both, in one line
+      std::error_code ignored;  // "running" would tell of a kill: better no summary than a wrong one
+      std::filesystem::remove(summary_file, ignored);
       throw std::runtime_error(fmt::format("{} (and no summary.json: {})", e.what(), summary_error.what()));
     }
     throw;

@@ -6,6 +6,9 @@
 //   energy; the needle's loads, run/needle_output.hpp; the mesh scene's pressure and obstacle
 //   loads, run/mesh_scene_loads.hpp) and a progress line on `progress`; finally
 //   DIR/summary.json (written atomically).
+// DIR/summary.json says "status": "running" (with the case) from the start until it is replaced
+// at the end, so a run killed outright never leaves a summary of another run or one that claims
+// "completed"; its result.h5 then lists every completed output time (result.xdmf may lag one).
 // A failure (IDA giving up, an inverted element, a full disk) leaves every completed output
 // time readable in result.h5/.xdmf and history.csv (the XDMF lists exactly the times result.h5
 // counts as complete), writes summary.json with "status": "failed" (or "interrupted") and the

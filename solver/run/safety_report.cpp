@@ -6,6 +6,7 @@
 #include <fmt/core.h>
 
 #include "case/case.hpp"
+#include "case/mesh_resolution.hpp"
 
 namespace needlefem::run {
 
@@ -208,9 +209,13 @@ std::string verdict_line(const nlohmann::json& summary) {
     judged += fmt::format("{}{} {:.3g}{} {} {:.3g}{}{}", judged.empty() ? "" : ", ", text.label, value, unit,
                           passes ? "<=" : ">", limit, unit, passes ? "" : " FAILS");
   }
-  return fmt::format("verdict: {} (critical-distance values: averages over a {:g} mm ball): {}",
+  const std::string mesh_warning =
+      summary.contains("mesh_resolution")
+          ? coarse_mesh_warning(summary["mesh_resolution"]["coarser"].get<std::vector<std::string>>())
+          : "";
+  return fmt::format("verdict: {} (critical-distance values: averages over a {:g} mm ball): {}{}",
                      summary["verdict"].get<std::string>(), safety["settings"]["critical_distance_mm"].get<double>(),
-                     judged);
+                     judged, mesh_warning.empty() ? "" : "; " + mesh_warning);
 }
 
 }  // namespace needlefem::run

@@ -96,7 +96,8 @@ class SafetyReport {
 // The run's verdict in one line, from a summary.json with "verdict" and "safety": e.g.
 // "verdict: fail (critical-distance values: averages over a 0.25 mm ball): max principal log
 // strain 0.252 > 0.19 FAILS, max principal strain rate 1.48 1/s <= 10 1/s, von Mises stress
-// 3.1 kPa <= 120 kPa".
+// 3.1 kPa <= 120 kPa", followed on a mesh coarser than the converged setting by
+// "; mesh coarser than the converged setting (...)" (case/mesh_resolution.hpp).
 // Empty when the summary has no verdict.
 std::string verdict_line(const nlohmann::json& summary);
 

@@ -9,6 +9,8 @@
 
 #include <fmt/format.h>
 
+#include "io_errors/io_errors.hpp"
+
 namespace needlefem::steering {
 
 namespace {
@@ -16,6 +18,7 @@ namespace {
 class PathFileWriter {
  public:
   explicit PathFileWriter(const std::filesystem::path& file) : name_(file.string()) {
+    io::stop_hdf5_error_printing();  // every call below is checked and reported in one line
     id_ = H5Fcreate(name_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
     if (id_ < 0) throw std::runtime_error(fmt::format("{}: cannot create HDF5 file", name_));
   }

@@ -10,6 +10,7 @@
 #include <toml++/toml.h>
 
 #include "case/case.hpp"
+#include "case/mesh_resolution.hpp"
 #include "case/schema.hpp"
 
 namespace needlefem::sweep {
@@ -226,14 +227,54 @@ std::string name_text(const nlohmann::json& value) {
   return text;
 }
 
-// Short column labels for names: the key's last part unless two swept keys share it.
-std::vector<std::string> labels(const std::vector<std::string>& keys) {
-  std::map<std::string, int> uses;
-  auto leaf = [](const std::string& key) { return key.substr(key.rfind('.') + 1); };
-  for (const auto& key : keys) ++uses[leaf(key)];
-  std::vector<std::string> out;
-  for (const auto& key : keys) out.push_back(uses[leaf(key)] > 1 ? key : leaf(key));
-  return out;
+// The words of a key's last part that say what it is, without its unit words:
+// "insertion_speed_mm_per_s" -> insertion, speed.
+std::vector<std::string> key_words(const std::string& key) {
+  static const std::set<std::string> kUnitWords{"mm", "um", "m", "m3", "deg", "rad", "s", "per", "pa", "kpa",
+                                                "n", "kg", "j", "t", "hz", "percent"};
+  std::vector<std::string> words;
+  std::stringstream leaf(key.substr(key.rfind('.') + 1));
+  for (std::string word; std::getline(leaf, word, '_');) words.push_back(word);
+  while (words.size() > 1 && kUnitWords.contains(words.back())) words.pop_back();
+  return words;
+}
+
+// The labels of the swept keys in point names: their initials; keys whose initials clash get their
+// words, and keys whose words still clash the whole key.
+std::vector<std::string> name_labels(const std::vector<std::string>& keys) {
+  using Label = std::string (*)(const std::string&);
+  const Label initials = [](const std::string& key) {
+    std::string out;
+    for (const auto& word : key_words(key)) out += word.front();
+    return out;
+  };
+  const Label words = [](const std::string& key) { return fmt::format("{}", fmt::join(key_words(key), "-")); };
+  const Label whole = [](const std::string& key) {
+    std::string out = key;
+    std::replace(out.begin(), out.end(), '.', '-');
+    return out;
+  };
+  std::vector<std::string> labels;
+  for (const auto& key : keys) labels.push_back(initials(key));
+  for (const Label longer : {words, whole}) {
+    std::map<std::string, int> uses;
+    for (const auto& label : labels) ++uses[label];
+    for (std::size_t k = 0; k < keys.size(); ++k)
+      if (uses[labels[k]] > 1) labels[k] = longer(keys[k]);
+  }
+  return labels;
+}
+
+// A point's directory name: each swept key's label followed by the point's value, joined by '_'
+// ("r0.5_b20_f0.25"); a value that is not a number follows a '-' ("dc-true").
+std::string point_name(const std::vector<std::string>& labels, const std::vector<std::string>& keys,
+                       const nlohmann::json& values) {
+  std::vector<std::string> parts;
+  for (std::size_t k = 0; k < keys.size(); ++k) {
+    const nlohmann::json& value = values[keys[k]];
+    parts.push_back(labels[k] + (value.is_number() ? "" : "-") + name_text(value));
+  }
+  return fmt::format("{}", fmt::join(parts, "_"));
 }
 
 std::vector<RuleViolation> scene_violations(const Case& c) {
@@ -274,6 +315,7 @@ DesignPoint design_point(const FlatTable& point, std::string name, nlohmann::jso
     const Case c = Case::parse(p.case_text, fmt::format("{} (point {})", origin, p.name));
     p.resolved = c.to_json();
     p.violations = scene_violations(c);
+    p.coarse_mesh = coarser_than_converged(c);
   } catch (const CaseError& e) {
     p.violations = {{"case", e.what()}};
   }
@@ -346,7 +388,7 @@ SweepPlan load_sweep(const fs::path& sweep_file) {
     for (const auto& axis : g.axes)
       for (const auto& key : axis.keys) add_unique(plan.swept_keys, key);
   }
-  const auto key_labels = labels(plan.swept_keys);
+  plan.name_labels = name_labels(plan.swept_keys);
   const std::string header = fmt::format("# Design point of the sweep {} (base case {}).\n", sweep_file.string(),
                                          plan.base_case.string());
 
@@ -367,16 +409,13 @@ SweepPlan load_sweep(const fs::path& sweep_file) {
       absolute_mesh_file(assigned, sweep_dir);
       overlay(point, assigned);
 
-      std::vector<std::string> parts;
       nlohmann::json values;
-      for (std::size_t k = 0; k < plan.swept_keys.size(); ++k) {
-        const std::string& key = plan.swept_keys[k];
+      for (const std::string& key : plan.swept_keys) {
         const toml::node* given = point.get(key);
         values[key] = given ? json_value(*given) : json_default(*find_key(key));
-        parts.push_back(key_labels[k] + "=" + name_text(values[key]));
       }
-      DesignPoint p = design_point(point, fmt::format("{}", fmt::join(parts, "__")), std::move(values), header,
-                                   sweep_file.string());
+      std::string name = point_name(plan.name_labels, plan.swept_keys, values);
+      DesignPoint p = design_point(point, std::move(name), std::move(values), header, sweep_file.string());
       p.grids = {g.name};
 
       const auto [it, inserted] = by_name.emplace(p.name, plan.points.size());

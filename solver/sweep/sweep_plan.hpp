@@ -21,8 +21,13 @@
 // Each point is base + [set] + its grid's set + its axis values, merged as TOML tables (so
 // the point's case gives exactly the keys a hand-written case would) and validated by the
 // case loader and the geometry rules (geometry/needle_tip.hpp). Its directory name lists the
-// values of every swept key (the keys that any grid varies or sets), so points of different
-// grids describing the same case share one directory and one row.
+// values of every swept key (the keys that any grid varies or sets), each after a short label,
+// so points of different grids describing the same case share one directory and one row, and a
+// point keeps its name when values are added to an axis (a sweep resumes across such edits).
+// A label is the initials of the key's last part without its unit words ("needle.radius_mm" r,
+// "needle.bevel_deg" b, "motion.insertion_speed_mm_per_s" is): "r0.5_b20_f0.25_is1_rs180"; keys
+// whose initials clash get their words ("radius", "ramp"), then the whole key. The table
+// (sweep_table.hpp) has every value in a column of its own; the labels are in plan.name_labels.
 #pragma once
 
 #include <filesystem>
@@ -42,6 +47,7 @@ struct DesignPoint {
   std::string case_text;                  // the point's case file (TOML)
   nlohmann::json resolved;                // Case::to_json() of the point: what its summary.json echoes
   std::vector<RuleViolation> violations;  // non-empty: impossible, not run (rule "case" for key errors)
+  std::vector<std::string> coarse_mesh;   // how its mesh is coarser than the converged setting (case/mesh_resolution.hpp)
   bool valid() const { return violations.empty(); }
 };
 
@@ -49,6 +55,7 @@ struct SweepPlan {
   std::filesystem::path sweep_file;
   std::filesystem::path base_case;
   std::vector<std::string> swept_keys;  // table columns, in order of first appearance
+  std::vector<std::string> name_labels; // per swept key, its label in the point names
   std::vector<DesignPoint> points;      // in grid order, each axis varying fastest last
 };
 

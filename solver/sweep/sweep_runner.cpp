@@ -18,6 +18,7 @@
 
 #include <fmt/format.h>
 
+#include "case/mesh_resolution.hpp"
 #include "sweep/sweep_table.hpp"
 
 extern char** environ;
@@ -169,6 +170,22 @@ double expected_cost(const DesignPoint& p) {
   return number("motion", "duration_s") / (element * element * element);
 }
 
+// How many possible design points are on a mesh coarser than the converged setting
+// (case/mesh_resolution.hpp), with the first one's sizes; "" when none is.
+std::string coarse_mesh_summary(const SweepPlan& plan) {
+  std::size_t possible = 0, coarse = 0;
+  const DesignPoint* first = nullptr;
+  for (const auto& p : plan.points) {
+    if (!p.valid()) continue;
+    ++possible;
+    if (p.coarse_mesh.empty()) continue;
+    ++coarse;
+    if (!first) first = &p;
+  }
+  if (!first) return "";
+  return fmt::format("{} of the {} possible design points: {}", coarse, possible, coarse_mesh_warning(first->coarse_mesh));
+}
+
 }  // namespace
 
 SweepOutcome run_sweep(const SweepPlan& plan, const SweepOptions& options) {
@@ -205,6 +222,15 @@ SweepOutcome run_sweep(const SweepPlan& plan, const SweepOptions& options) {
   progress.line(fmt::format("{} design points ({} impossible); {} to run here, {} already done, {} to run with {} job{}",
                             plan.points.size(), outcome.impossible, outcome.total, outcome.already_done, queue.size(),
                             options.jobs, options.jobs > 1 ? "s" : ""));
+  const std::string coarse_warning = coarse_mesh_summary(plan);
+  if (!coarse_warning.empty()) progress.line("warning: " + coarse_warning);
+  if (!plan.name_labels.empty()) {
+    std::vector<std::string> legend;
+    for (std::size_t k = 0; k < plan.swept_keys.size(); ++k)
+      legend.push_back(fmt::format("{} = {}", plan.name_labels[k], plan.swept_keys[k]));
+    progress.line(fmt::format("point folders are named by label and value: {}; sweep.csv has each value in a column",
+                              fmt::join(legend, ", ")));
+  }
   if (options.list_only)
     for (std::size_t i : queue) progress.line(fmt::format("to run: {} ({})", plan.points[i].name,
                                                           fmt::join(plan.points[i].grids, ",")));
@@ -263,8 +289,9 @@ SweepOutcome run_sweep(const SweepPlan& plan, const SweepOptions& options) {
   const std::string tables = options.write_tables ? fmt::format("; tables {} and {}", (options.out_dir / "sweep.csv").string(),
                                                                  (options.out_dir / "sweep.h5").string())
                                                    : "";
-  progress.line(fmt::format("finished: {} completed, {} failed, {} already done, {} impossible{}", outcome.completed,
-                            outcome.failed, outcome.already_done, outcome.impossible, tables));
+  progress.line(fmt::format("finished: {} completed, {} failed, {} already done, {} impossible{}{}", outcome.completed,
+                            outcome.failed, outcome.already_done, outcome.impossible, tables,
+                            coarse_warning.empty() ? "" : "; warning: " + coarse_warning));
   return outcome;
 }
 

@@ -3,8 +3,8 @@
 // at most `jobs` at a time, each with its output in DIR/<point>/run.log.
 //
 // Resuming: a point whose summary.json echoes its own case and says "completed" is skipped
-// (so is "failed", unless retry_failed). A point whose run was killed has no summary.json
-// (run_case removes it first and writes it only at the end) and runs again, so a killed sweep
+// (so is "failed", unless retry_failed). A point whose run was killed has a summary.json that
+// still says "running" (run_case replaces it only at the end) and runs again, so a killed sweep
 // restarted loses nothing. A child that exits non-zero without a summary of its own (crash,
 // signal, error before the run starts) gets one written for it: status "failed" and the last
 // error line of its run.log. Children are killed with the sweep (PR_SET_PDEATHSIG), so a

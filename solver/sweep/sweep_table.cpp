@@ -17,6 +17,7 @@
 #include <fmt/format.h>
 
 #include "case/schema.hpp"
+#include "io_errors/io_errors.hpp"
 
 namespace needlefem::sweep {
 
@@ -148,6 +149,8 @@ std::deque<Column> table_columns(const SweepPlan& plan, const fs::path& out_dir)
   for (const auto& limit : kPaperLimits)
     add_verdict(fmt::format("verdict_{}", limit.name), fmt::format("/safety/{}/verdict", limit.name));
   add_verdict("verdict", "/verdict");  // the run's: fail when any limit fails
+  Column& coarse_mesh = add("coarse_mesh", Kind::text);  // empty: the converged setting (or not judged)
+  for (const auto& p : plan.points) coarse_mesh.text.push_back(fmt::format("{}", fmt::join(p.coarse_mesh, "; ")));
 
   // Threshold columns: the union of the names the completed runs report, in first-seen order.
   std::vector<std::vector<std::pair<std::string, std::int8_t>>> results;
@@ -250,6 +253,7 @@ void write_text_attribute(hid_t object, const std::string& name, const std::vect
 }
 
 void write_h5(const fs::path& file, const SweepPlan& plan, const std::deque<Column>& columns, std::size_t rows) {
+  io::stop_hdf5_error_printing();  // each failure is reported by H5Id and h5_check
   H5Id h5(H5Fcreate(file.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose, "create " + file.string());
   write_text_attribute(h5, "format", {"needlefem-sweep-table"}, true);
   write_text_attribute(h5, "sweep_file", {plan.sweep_file.string()}, true);
@@ -310,6 +314,7 @@ PointRecord read_point(const DesignPoint& point, const fs::path& out_dir) {
     return {"pending", nullptr, ""};
   const std::string status = summary.value("status", "");
   if (status == "completed") return {status, summary, ""};
+  if (status == "running") return {"pending", nullptr, ""};  // its run was killed: run it again
   return {"failed", summary, summary.value("error", "no error message")};
 }
 

@@ -11,7 +11,9 @@
 // the mesh-objective metrics of each limit (summary "safety", run/safety_report.hpp):
 // critical_distance_<limit>, volume_above_<limit>_mm3, percentile_<limit>, verdict_<limit>
 // (1 pass, 0 fail, empty/-1 unknown: the critical-distance value against the limit) and verdict
-// (the run's summary "verdict": 0 when any limit fails, 1 when all pass),
+// (the run's summary "verdict": 0 when any limit fails, 1 when all pass), coarse_mesh (how the
+// point's mesh is coarser than the setting the convergence study found adequate, "; "-separated,
+// empty when it is not: case/mesh_resolution.hpp; such verdicts may change with the mesh),
 // pass_<threshold> (the point maxima, as paper 001 judged; 1 pass, 0 fail, empty/-1 unknown) and
 // safe (all those pass), dofs,
 // wall_s (the run's own wall time), time_reached_s, rules (violated geometry rules) and error.

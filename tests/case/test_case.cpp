@@ -201,3 +201,20 @@ TEST(MotionLength, CaseFilesStatingTravelAndRotationKeepTheirMotion) {
     EXPECT_DOUBLE_EQ(c.real("motion.rotation_deg"), 18.0) << m.file;
   }
 }
+
+// NEEDLEFEM_SET: the environment's overrides come after --set, restate the motion's length like any
+// layer, and name themselves in errors.
+TEST(EnvironmentOverrides, ApplyAfterSetAndNameThemselvesInErrors) {
+  ASSERT_EQ(setenv(needlefem::kEnvironmentOverrides, "tissue.core_element_mm=1.5  motion.duration_s=0.01", 1), 0);
+  const Case c = Case::parse("[tissue]\ncore_element_mm = 0.4\n[motion]\ninsertion_travel_mm = 0.1\n", "a.toml",
+                             {"tissue.core_element_mm=0.8", "mesh.seed=3"});
+  EXPECT_EQ(c.real("tissue.core_element_mm"), 1.5);
+  EXPECT_EQ(c.integer("mesh.seed"), 3);
+  EXPECT_EQ(c.real("motion.duration_s"), 0.01);
+  EXPECT_FALSE(c.given("motion.insertion_travel_mm"));
+  ASSERT_EQ(setenv(needlefem::kEnvironmentOverrides, "tissue.core_elemnt_mm=1.5", 1), 0);
+  EXPECT_EQ(error_of(""), "NEEDLEFEM_SET tissue.core_elemnt_mm=1.5: key 'tissue.core_elemnt_mm': unknown key "
+                          "(did you mean 'tissue.core_element_mm'?)");
+  ASSERT_EQ(unsetenv(needlefem::kEnvironmentOverrides), 0);
+  EXPECT_EQ(Case::parse("", "a.toml").real("tissue.core_element_mm"), 0.4);
+}

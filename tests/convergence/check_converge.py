@@ -6,8 +6,11 @@ verdict per limit; the block's max log strain ln 1.2 passes the 0.19 limit; a se
 nothing (resumed) and gives the same report; postprocess/plot_convergence.py writes a PNG.
 With --failing-case (a case whose run fails): converge exits non-zero with one stderr line naming
 level 0 and the reason, and still writes converge.json and converge.csv.
+With --coarse-tip (a brain-tip case, run on a coarse linear mesh with tied contact): the last line
+gives the verdict and warns that the mesh is coarser than the converged setting.
 
 usage: check_converge.py --exe NEEDLEFEM --case CASE --out DIR --plot PLOT_SCRIPT [--failing-case CASE]
+                         [--coarse-tip CASE]
 """
 import argparse
 import csv
@@ -33,6 +36,7 @@ parser.add_argument("--case", required=True)
 parser.add_argument("--out", type=pathlib.Path, required=True)
 parser.add_argument("--plot", required=True)
 parser.add_argument("--failing-case")
+parser.add_argument("--coarse-tip")
 args = parser.parse_args()
 shutil.rmtree(args.out, ignore_errors=True)
 
@@ -97,6 +101,19 @@ if args.failing_case:
     if partial.exists():
         levels = json.loads(partial.read_text())["levels"]
         check(levels[0]["status"] == "failed" and levels[0].get("error"), f"level 0 recorded as failed: {levels[0]}")
+
+if args.coarse_tip:
+    out = args.out.parent / (args.out.name + "_coarse_tip")
+    shutil.rmtree(out, ignore_errors=True)
+    small = ["tissue.core_element_mm=1.5", "tissue.outer_element_mm=4", "mesh.order=1", "contact.mode=tied",
+             "output.interval_s=0.1"]
+    run = subprocess.run([args.exe, "converge", args.coarse_tip, "--out", str(out), "--jobs", "2"]
+                         + [word for setting in small for word in ("--set", setting)], capture_output=True, text=True)
+    last = run.stdout.strip().splitlines()[-1] if run.stdout.strip() else ""
+    check(run.returncode == 0 and last.startswith("converge: ") and last.endswith(
+        "; mesh coarser than the converged setting (tissue.core_element_mm = 1.5 mm > 0.4 mm, tissue.outer_element_mm "
+        "= 4 mm > 2 mm, mesh.order = 1 < 2): the verdict may change on a finer mesh (docs/accuracy.md section 4)"),
+        f"a coarse brain tip's verdict line warns of the mesh: {last!r} {run.stderr[-300:]!r}")
 
 if failures:
     sys.exit(f"{len(failures)} check(s) failed")

@@ -77,6 +77,12 @@ class LoopbackReceiver {
   }
   int port() const { return port_; }
   std::string address() const { return "udp://127.0.0.1:" + std::to_string(port_); }
+  // Waits (up to `timeout_ms`) until a frame has arrived; false if none did.
+  bool wait_for_first_frame(int timeout_ms) const {
+    for (int waited_ms = 0; !first_received_ && waited_ms < timeout_ms; ++waited_ms)
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    return first_received_;
+  }
   // Valid after stop().
   const std::vector<DeviceFrame>& frames() const { return frames_; }
   std::size_t malformed() const { return malformed_; }
@@ -89,6 +95,7 @@ class LoopbackReceiver {
       if (n < 0) continue;  // timeout: look at the stop flag
       if (auto frame = decode_packet(buffer, static_cast<std::size_t>(n))) {
         frames_.push_back(*frame);
+        first_received_ = true;
         if (frame->final_frame) {
           final_received_ = true;
           return;
@@ -102,6 +109,7 @@ class LoopbackReceiver {
   int port_ = 0;
   std::atomic<bool> stopping_{false};
   std::atomic<bool> final_received_{false};
+  std::atomic<bool> first_received_{false};
   std::vector<DeviceFrame> frames_;
   std::size_t malformed_ = 0;
   std::thread thread_;

@@ -145,7 +145,10 @@ TEST(ReplayCommand, CtrlCStopsWithZeroForceAndReports) {
             static_cast<char*>(nullptr));
     std::_Exit(127);
   }
-  std::this_thread::sleep_for(std::chrono::milliseconds(700));
+  // Interrupted while it streams: once its first frame has arrived (a process that takes longer
+  // than a fixed wait to start, on a loaded machine, would die of SIGINT before its handler is set).
+  ASSERT_TRUE(receiver.wait_for_first_frame(20000)) << "replay sent nothing";
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
   ::kill(child, SIGINT);
   int status = 0;
   ::waitpid(child, &status, 0);

@@ -12,6 +12,10 @@
   interrupt  SIGTERM (then SIGINT) mid-run: the run stops after the step in progress with exit
              128 + signal, one line, summary.json "interrupted", and result.h5/.xdmf holding the
              same completed output times (once, the signal killed the run and left no summary).
+  killed     SIGKILL mid-run, into an --out that held an earlier run's completed summary: summary.json
+             says "running" with this run's case (once, the earlier summary was removed and nothing
+             said what the directory held), result.h5 opens with the completed output times and
+             result.xdmf lists them or one fewer.
   full-disk-mid-run
              A small tmpfs (mounted in a user namespace: unshare -Urm) fills up mid-run, once in
              result.h5 and once in the XDMF files: one line naming the file and "no space left on
@@ -19,6 +23,12 @@
              (once, HDF5 printed its error stack, the error named summary.json instead, and
              result.xdmf listed a time result_surfaces.xdmf and the summary did not). Skipped
              (exit 77) where a user namespace cannot mount a tmpfs.
+  cannot-create
+             result.h5 cannot be created: --out is a file, result.h5 is a directory, and (on a tmpfs
+             in a user namespace, with room for mesh.msh and a few pages) the disk is full. stderr
+             holds exactly one line naming the path and the exit status is 1 (once, HDF5 printed
+             its error stack when the file it could not finish was closed, then "HDF5: infinite
+             loop closing library" or a SIGSEGV in MPI_Finalize).
 
 Every mode checks the output directory it leaves with check_consistent().
 
@@ -156,20 +166,26 @@ def check_disk_full(args, run, failures):
             failures.append(f"{target} on a full disk left {[os.path.basename(f) for f in left]}")
 
 
+def start_past_two_output_times(run, out, **popen):
+    """Starts the run (101 output times of the small block) and returns once it has written the
+    first two (or ended, or a minute passed)."""
+    history = os.path.join(out, "history.csv")
+    process = subprocess.Popen(run + ["--out", out], stdout=subprocess.DEVNULL, **popen)
+    deadline = time.monotonic() + 60
+    while process.poll() is None and time.monotonic() < deadline:
+        if os.path.exists(history):
+            with open(history) as f:
+                if sum(1 for _ in f) >= 3:  # header and two output times
+                    break
+        time.sleep(0.005)
+    return process
+
+
 def check_interrupt(args, run, failures):
     for sig in (signal.SIGTERM, signal.SIGINT):
         out = os.path.join(args.out, sig.name)
         shutil.rmtree(out, ignore_errors=True)
-        history = os.path.join(out, "history.csv")
-        # 101 output times of the small block: stopped once the first two are written.
-        process = subprocess.Popen(run + ["--out", out], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-        deadline = time.monotonic() + 60
-        while process.poll() is None and time.monotonic() < deadline:
-            if os.path.exists(history):
-                with open(history) as f:
-                    if sum(1 for _ in f) >= 3:  # header and two output times
-                        break
-            time.sleep(0.005)
+        process = start_past_two_output_times(run, out, stderr=subprocess.PIPE, text=True)
         process.send_signal(signal.SIGSTOP)  # held still, so the signal lands mid-run however fast it is
         running = process.poll() is None
         process.send_signal(sig)
@@ -246,15 +262,108 @@ def check_full_disk_mid_run(args, run, failures):
             failures.append(f"{label}: summary.json says {summary.get('status')!r} on a full disk")
 
 
+def check_killed(args, run, failures):
+    out = args.out
+    shutil.rmtree(out, ignore_errors=True)
+    os.makedirs(out)
+    with open(os.path.join(out, "summary.json"), "w") as f:  # an earlier run's, in the same --out
+        json.dump({"status": "completed", "case": {}}, f)
+    process = start_past_two_output_times(run, out, stderr=subprocess.DEVNULL)
+    running = process.poll() is None
+    process.send_signal(signal.SIGKILL)
+    process.wait()
+    if not running:
+        failures.append("inconclusive: the run ended before SIGKILL was sent")
+        return
+    with open(os.path.join(out, "summary.json")) as f:
+        summary = json.load(f)
+    if summary.get("status") != "running" or summary.get("case", {}).get("scene", {}).get("kind") != "block":
+        failures.append(f"a killed run's summary.json says {summary.get('status')!r} for "
+                        f"{summary.get('case', {}).get('scene')}, expected 'running' with its own case")
+    try:
+        with h5py.File(os.path.join(out, "result.h5"), "r") as result:
+            count = int(result["/series/time_count"][0])
+        with open(os.path.join(out, "result.xdmf")) as f:
+            listed = len(re.findall(r'<Time Value="', f.read()))
+        if count < 2 or listed not in (count, count - 1):
+            failures.append(f"killed: result.h5 completed {count} output times, result.xdmf lists {listed}")
+    except OSError as error:
+        failures.append(f"killed: result.h5 or result.xdmf does not open: {error}")
+
+
+def running_summary_size(run, out):
+    """The size of the summary.json a run writes when it starts (killed once it is there)."""
+    shutil.rmtree(out, ignore_errors=True)
+    summary_file = os.path.join(out, "summary.json")
+    process = subprocess.Popen(run + ["--out", out], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    deadline = time.monotonic() + 60
+    while process.poll() is None and time.monotonic() < deadline and not os.path.exists(summary_file):
+        time.sleep(0.002)
+    process.send_signal(signal.SIGKILL)
+    process.wait()
+    with open(summary_file) as f:
+        if json.load(f)["status"] != "running":
+            raise SystemExit(f"{summary_file}: expected the summary of a run under way")
+    return os.path.getsize(summary_file)
+
+
+def skip_rest(reason, failures):
+    """Skips the rest of a mode: the test is skipped unless what ran before failed."""
+    print(f"skipped the rest: {reason}")
+    if not failures:
+        sys.exit(SKIP)
+
+
+def check_cannot_create(args, run, failures):
+    def one_line(label, result, path):
+        errors = error_lines(result.stderr)
+        if result.returncode == 0:
+            failures.append(f"{label}: exit 0")
+        if len(errors) != 1 or not errors[0].startswith("needlefem: error: ") or path not in errors[0]:
+            failures.append(f"{label}: expected one line naming {path}, got {errors!r}")
+
+    shutil.rmtree(args.out, ignore_errors=True)
+    os.makedirs(args.out)
+    a_file = os.path.join(args.out, "a_file")
+    with open(a_file, "w") as f:
+        f.write("not a directory\n")
+    one_line("--out is a file", subprocess.run(run + ["--out", a_file], capture_output=True, text=True), a_file)
+    result_directory = os.path.join(args.out, "result_is_a_directory")
+    os.makedirs(os.path.join(result_directory, "result.h5"))
+    one_line("result.h5 is a directory", subprocess.run(run + ["--out", result_directory], capture_output=True,
+                                                        text=True), os.path.join(result_directory, "result.h5"))
+
+    if shutil.which("unshare") is None:
+        return skip_rest("no unshare", failures)
+    meshed = os.path.join(args.out, "meshed")
+    subprocess.run([args.exe, "mesh", args.case, "--set", "block.element_mm=1", "--out", meshed], check=True,
+                   capture_output=True)
+    page = os.sysconf("SC_PAGE_SIZE")
+    pages = lambda size: -(-size // page) * page  # noqa: E731
+    room = (pages(os.path.getsize(os.path.join(meshed, "mesh.msh")))
+            + pages(running_summary_size(run, os.path.join(args.out, "running"))))
+    # Room for the "running" summary.json, mesh.msh and 0, 2 or 8 pages more: result.h5 fails at
+    # its creation, at its first writes, or when it is flushed before the first output time.
+    for extra_pages in (0, 2, 8):
+        label = f"room for mesh.msh and {extra_pages} pages"
+        outcome = run_on_tmpfs(run, os.path.join(args.out, f"full_{extra_pages}"), room + extra_pages * page)
+        if outcome is None:
+            return skip_rest("a user namespace cannot mount a tmpfs here", failures)
+        status, stderr, mount_point = outcome
+        one_line(label, subprocess.CompletedProcess([], status, "", stderr), os.path.join(mount_point, "result.h5"))
+        if status != 1 or "no space left on device" not in stderr:
+            failures.append(f"{label}: exit {status} (1 expected), the error must say the disk is full: {stderr!r}")
+
+
 parser = argparse.ArgumentParser()
-parser.add_argument("mode", choices=["lock", "disk-full", "interrupt", "full-disk-mid-run"])
+parser.add_argument("mode", choices=["lock", "disk-full", "interrupt", "killed", "full-disk-mid-run", "cannot-create"])
 parser.add_argument("--exe", required=True)
 parser.add_argument("--case", required=True)
 parser.add_argument("--out", required=True)
 args = parser.parse_args()
 failures = []
-{"lock": check_lock, "disk-full": check_disk_full, "interrupt": check_interrupt,
- "full-disk-mid-run": check_full_disk_mid_run}[args.mode](
+{"lock": check_lock, "disk-full": check_disk_full, "interrupt": check_interrupt, "killed": check_killed,
+ "full-disk-mid-run": check_full_disk_mid_run, "cannot-create": check_cannot_create}[args.mode](
     args, [args.exe, "run", args.case, "--set", "block.element_mm=1"], failures)
 for failure in failures:
     print("FAIL:", failure)

@@ -124,6 +124,11 @@ def check_verdict(stdout, summary):
         said = f"{words} {value:.3g}"
         check(said in last and (f"{limit:.3g}" in last.split(said, 1)[1].split(",")[0]),
               f"the last line gives the {words} {value:.3g} against {limit:.3g}")
+    # On a mesh coarser than the converged setting (case/mesh_resolution.hpp) the line says so.
+    coarser = summary.get("mesh_resolution", {}).get("coarser", [])
+    warning = "; mesh coarser than the converged setting ("
+    check((warning + ", ".join(coarser) + "): the verdict may change on a finer mesh") in last if coarser
+          else warning not in last, f"the last line warns of a coarse mesh exactly when it is one ({coarser})")
     check("max principal strain rate" in safety["strain_rate_per_s"]["quantity"]
           and "equivalent_strain_rate_per_s" in safety["strain_rate_per_s"]["quantity"],
           "safety.strain_rate_per_s names the judged measure and the other one")
@@ -175,6 +180,7 @@ def block(args):
     # ln 1.2 = 0.182 < 0.19, 0.2 1/s < 10 1/s and sigma < 120 kPa everywhere in the homogeneous block.
     check_verdict(result.stdout, summary)
     check(summary["verdict"] == "pass", "the block passes every limit")
+    check("mesh_resolution" not in summary, "the block scene's mesh is not judged against the brain-tip study")
 
 
 def attribute_text(dataset, name):
@@ -260,6 +266,9 @@ def brain_tip(args):
         check(entry["critical_distance_double_radius"]["value"] <= entry["critical_distance_half_radius"]["value"],
               f"safety.{name}: a larger ball averages lower near the needle "
               f"({entry['critical_distance_double_radius']['value']:.4g} <= {entry['critical_distance_half_radius']['value']:.4g})")
+    check(summary["mesh_resolution"]["as_converged"] is False and summary["mesh_resolution"]["coarser"] ==
+          ["tissue.core_element_mm = 1.5 mm > 0.4 mm", "tissue.outer_element_mm = 3 mm > 2 mm"],
+          f"summary mesh_resolution names the coarse sizes: {summary['mesh_resolution']}")
     check_verdict(result.stdout, summary)
     deflection = needle["deflection_check"]
     check(deflection["needle_dofs"] > 0 and deflection["elastic_energy_j"] > 0

@@ -13,6 +13,9 @@
   bad      runs tests/sweep/bad_points.toml: impossible points listed on the terminal with their
            rule and in the table as "impossible" with the rule; the run that fails recorded as
            "failed" with its error; the sweep exits 0.
+  list     `sweep --list` of the paper-001 sweep files: the plan is made, point folder names are
+           short and match their values in sweep.csv, the quick sweep's coarse mesh is warned of
+           (terminal, coarse_mesh column, safety map title) and the full grid's is not.
   figures  runs postprocess/sweep_figures.py all and postprocess/render_max_strain.py (pvbatch
            under xvfb-run) on the resume test's sweep: every PNG exists and is not blank; the
            safety map marks each point with its verdict and failing limit.
@@ -24,6 +27,7 @@ import json
 import math
 import os
 import pathlib
+import re
 import shutil
 import signal
 import subprocess
@@ -128,13 +132,16 @@ def check_table(out, expected_points):
 def resume(args):
     out = pathlib.Path(args.out)
     shutil.rmtree(out, ignore_errors=True)
-    expected = [f"element_mm={e}__ramp_s={r}" for e in ("0.5", "1") for r in ("0.015", "1")]
+    # Point folders: each swept key's label and the point's value (e = block.element_mm, r = loading.ramp_s).
+    expected = [f"e{e}_r{r}" for e in ("0.5", "1") for r in ("0.015", "1")]
     listed = subprocess.run([args.exe, "sweep", str(args.sweep), "--out", str(out), "--list"], capture_output=True,
                             text=True)
     order = [line.split("to run: ")[1].split(" ")[0] for line in listed.stdout.splitlines() + listed.stderr.splitlines()
              if "to run: " in line]
-    check(sorted(order) == sorted(expected) and all("element_mm=0.5" in name for name in order[:2]),
+    check(sorted(order) == sorted(expected) and all(name.startswith("e0.5_") for name in order[:2]),
           f"the longest runs (finest mesh) are started first: {order}")
+    check("point folders are named by label and value: e = block.element_mm, r = loading.ramp_s" in listed.stdout,
+          "the sweep prints what the labels of the point folders stand for")
     shutil.rmtree(out, ignore_errors=True)
     start = time.monotonic()
     first = sweep(args.exe, args.sweep, out, jobs=2, start_new_session=True)
@@ -251,6 +258,40 @@ def figures(args):
     shown = [float(w.split()[-4]) for w in result.stdout.splitlines() if w.startswith("wrote ")]
     check(len(shown) == 1 and field_max * (1 - 1e-3) <= shown[0] <= field_max * (1 + 1e-5),
           f"the rendered field is max_over_time_log_strain at the last time ({shown} vs {field_max:.7g})")
+    check_scale_bar(png, result.stdout, block_mm=1.0)  # cases/block_uniaxial.toml: a 1 mm cube
+
+
+def longest_run(mask):
+    """(start, length) of the longest run of True in a 1-D boolean array."""
+    best, start = (0, 0), None
+    for i, value in enumerate(list(mask) + [False]):
+        if value and start is None:
+            start = i
+        elif not value and start is not None:
+            best = max(best, (i - start, start))
+            start = None
+    return best[1], best[0]
+
+
+def check_scale_bar(png, stdout, block_mm):
+    """The render's scale bar is drawn where the script says, and its length in pixels is its
+    length in mm at the scale of the rendered field (the 1 mm block's cut, measured in the image)."""
+    import matplotlib.image
+    said = [line for line in stdout.splitlines() if line.startswith("scale bar ")]
+    check(len(said) == 1, f"the render states its scale bar: {said}")
+    if len(said) != 1:
+        return
+    numbers = re.findall(r"[-+0-9.]+", said[0])
+    length_mm, x, y, pixels = float(numbers[0]), int(numbers[1]), int(numbers[2]), float(numbers[3])
+    image = matplotlib.image.imread(png)[..., :3].mean(axis=2)
+    field_start, field_pixels = longest_run(image[image.shape[0] // 2] < 0.95)  # the field, left to right
+    dark = [longest_run(image[row] < 0.3) for row in range(y - 6, y + 7)]
+    start, drawn = max(dark, key=lambda run: run[1])
+    expected = length_mm / block_mm * field_pixels
+    check(abs(start - x) <= 3 and abs(drawn - pixels) <= 4 and abs(drawn - expected) <= 0.01 * expected + 4,
+          f"scale bar {length_mm:g} mm drawn {drawn} px from x = {start} (said {pixels:.0f} px from {x}; the "
+          f"{block_mm:g} mm field is {field_pixels} px wide, so {expected:.0f} px)")
+    check(length_mm == 0.2, f"scale bar {length_mm:g} mm: the largest 1-2-5 length within a quarter of the field")
 
 
 def steering(args):
@@ -358,9 +399,54 @@ def full_grid_figures(args):
     check(texts and clashes == 0, f"safety map: {len(texts)} design labels, {clashes} overlapping")
 
 
+def listed(args):
+    """`sweep --list` of the project's paper-001 sweep files: the plan is made (once, two grids'
+    shared point with different motion keys stopped it), the point folders are short and each
+    name is its labels and its values in sweep.csv; the quick sweep's coarse mesh is warned of on
+    the terminal, in the table and in the safety map's title."""
+    sys.path.insert(0, str(pathlib.Path(args.figures).parent))
+    import sweep_figures
+    for sweep_file in args.sweep.split(","):
+        out = pathlib.Path(args.out) / pathlib.Path(sweep_file).stem
+        shutil.rmtree(out, ignore_errors=True)
+        result = subprocess.run([args.exe, "sweep", sweep_file, "--out", str(out), "--list"], capture_output=True,
+                                text=True)
+        name = pathlib.Path(sweep_file).name
+        check(result.returncode == 0, f"{name}: --list exits 0 ({result.stderr.strip()[:200]})")
+        if result.returncode != 0:
+            continue
+        legend = [line.split("value: ")[1].split(";")[0] for line in result.stdout.splitlines()
+                  if "point folders are named by label and value: " in line]
+        check(len(legend) == 1, f"{name}: the labels of the point folders are printed")
+        if len(legend) != 1:
+            continue
+        labels = [entry.split(" = ") for entry in legend[0].split(", ")]
+        rows = read_csv(out)
+        longest = max(len(r["point"]) for r in rows)
+        check(longest <= 40, f"{name}: {len(rows)} point folders, the longest {longest} characters")
+        # The quick sweep's coarse mesh is said beside every verdict: a warning when the sweep starts
+        # and a coarse_mesh column naming the sizes; the full grid at the paper's mesh has neither.
+        quick = "quick" in name
+        coarse = "tissue.core_element_mm = 1 mm > 0.4 mm; tissue.outer_element_mm = 3 mm > 2 mm"
+        possible = [r for r in rows if r["status"] != "impossible"]
+        check(all(r["coarse_mesh"] == (coarse if quick else "") for r in possible),
+              f"{name}: coarse_mesh column {'names the coarse sizes' if quick else 'empty'} on every possible point")
+        warned = [line for line in result.stdout.splitlines() if "warning: " in line]
+        check(len(warned) == 1 and f"24 of the 24 possible design points: mesh coarser than the converged setting"
+              in warned[0] if quick else not warned, f"{name}: coarse-mesh warning {warned}")
+        fig = sweep_figures.safety_map(sweep_figures.Sweep(out), out / "safety_map.png")
+        title = " ".join([fig._suptitle.get_text()] + [t.get_text() for t in fig.texts])
+        check(("Warning: 24 of 24 designs on a mesh coarser than the converged setting" in title.replace("\n", " "))
+              == quick, f"{name}: the safety map's title warns of the coarse mesh exactly when it is: {title!r}")
+        for r in rows:
+            expected = "_".join(label + (r[key] if r[key].replace(".", "").replace("-", "").isdigit() else "-" + r[key])
+                                for label, key in labels)
+            check(r["point"] == expected, f"{name}: folder {r['point']} = its values in sweep.csv ({expected})")
+
+
 def main():
     parser = argparse.ArgumentParser()
-    parser.add_argument("mode", choices=["resume", "bad", "figures", "steering", "full-grid"])
+    parser.add_argument("mode", choices=["resume", "bad", "figures", "steering", "full-grid", "list"])
     parser.add_argument("--exe")
     parser.add_argument("--sweep")
     parser.add_argument("--out", required=True)
@@ -369,7 +455,7 @@ def main():
     parser.add_argument("--render")
     args = parser.parse_args()
     {"resume": resume, "bad": bad, "figures": figures, "steering": steering,
-     "full-grid": full_grid_figures}[args.mode](args)
+     "full-grid": full_grid_figures, "list": listed}[args.mode](args)
     if failures:
         print(f"{len(failures)} check(s) failed")
         return 1
