@@ -275,23 +275,22 @@ std::vector<KeySpec> build_schema() {
              "Newton linear solves: 'modified' reuses the factored Newton matrix; 'krylov' runs GMRES on the "
              "current Jacobian (difference quotients) preconditioned by the rarely refreshed factorisation"),
       integer("integration.krylov_dimension", 20, 1, 500, "GMRES basis size of integration.newton = krylov"),
-      integer("integration.krylov_stale_iterations", 5, 1, 500,
+      integer("integration.krylov_stale_iterations", 20, 1, 500,
               "integration.newton = krylov: GMRES iterations allowed with a Newton matrix factored in an earlier "
-              "step (krylov_dimension with a fresh one); at the limit Newton retries with a fresh matrix. Tied "
-              "0.4 mm brain tip: 320 GMRES iterations and 19.4 s with no limit, 122 and 14 s with 5"),
+              "step (krylov_dimension with a fresh one); at the limit Newton retries with a fresh matrix. Sliding "
+              "friction needs 3-18 iterations with an aged matrix, so a low limit refactors it at most steps; a "
+              "tied cavity (no sliding) does better with 5 (paper001_tied.toml sets it; docs/speed.md)"),
       real("integration.krylov_aged_matrix_ratio", 2.0, 0.0, 1000.0,
            "integration.newton = krylov: a Newton matrix from an earlier step is refactored at the next step once a "
            "step it served needed more than this many times the GMRES iterations per Newton iteration of the step "
            "that factored it (0: only when GMRES fails). Table I r = 0.83 mm, 20 deg, 0.45 mm: 580 GMRES "
            "iterations, 2 factorisations and 32 s with 0; 281, 5 and 21.5 s with 2"),
-      real("integration.krylov_tolerance", 0.05, 1e-6, 1.0,
+      real("integration.krylov_tolerance", 0.5, 1e-6, 1.0,
            "integration.newton = krylov: GMRES stops when its residual is below this fraction of the Newton "
-           "test's tolerance (IDA's epslin). Frictional brain-tip study at 0.4 mm with Newton at 0.05: 0.5 (the "
-           "Table I and rate-study cases set it) ran the study in 217 s against 302 s with 0.25, the same maxima "
-           "within 1 % (docs/speed.md); but IDA's Newton "
-           "test looks only at the updates, so a loose solve can end Newton early: at K/mu = 1e5 (locking "
-           "beam) 0.25 gave a 4x wrong reaction, and a tied brain-tip run a strain-rate spike at its last "
-           "output"),
+           "test's tolerance (IDA's epslin). With the default Newton coefficient (0.05) that is 0.025 of the "
+           "error-test tolerance, about as tight as IDA's own defaults (0.05 x 0.33). IDA's Newton test looks "
+           "only at the updates, so a much looser solve can end Newton early (a 4x wrong reaction of the "
+           "locking beam at K/mu = 1e5 with 0.25 x 0.33; docs/speed.md)"),
       choice("integration.krylov_preconditioner", "exact", {"exact", "symmetric"},
              "integration.newton = krylov: the Newton matrix that preconditions GMRES. 'exact': the matrix itself "
              "(single-precision LU where friction makes it unsymmetric); 'symmetric': Cholesky of the symmetric "
@@ -299,12 +298,12 @@ std::vector<KeySpec> build_schema() {
              "meshes that part is still indefinite at some setups and MUMPS LU takes over: default frictional case "
              "31 s on its mesh, 64-83 s on five other meshes of the tip (mesh.seed 2-6) against 32-48 s with "
              "'exact' (docs/speed.md)"),
-      real("integration.newton_convergence_coefficient", 0.33, 0.0, 1.0,
+      real("integration.newton_convergence_coefficient", 0.05, 0.0, 1.0,
            "Newton stops when its error estimate is below this fraction of the error-test tolerance "
-           "(IDA's epcon). Uniaxial block at K/mu ~ 1e4: stress error 6e-3 at 0.33, 1e-4 at 0.01. The strain "
-           "rate comes from IDA's y', which carries the Newton error divided by the step: on the frictional "
-           "study 0.33 read single output times up to 2x high, 0.05 (set in the Table I and rate-study cases) "
-           "left one isolated spike in ten runs, 0.01 stalled 3 of the 10 at t = 0.1-0.2 ms (cases/README.md)"),
+           "(IDA's epcon; IDA's own default is 0.33). The strain rate, a safety quantity, comes from IDA's y', "
+           "which carries the Newton error divided by the step: at 0.33 single output times of the frictional "
+           "study read up to 2x high, at 0.05 within 1-3 % of tight runs; 0.01 stalled some study runs in their "
+           "first 0.2 ms (cases/README.md)"),
       real("integration.newton_matrix_cj_change", 0.9, 0.0, 0.99,
            "Refactor the Newton matrix (or preconditioner) when IDA's cj = alpha/h changed by more than this "
            "fraction (IDA's own default 0.25 suits 'modified' on stiff ODEs; the tissue matrix barely depends on cj)",
