@@ -25,6 +25,7 @@ import json
 import os
 import subprocess
 import time
+import tomllib
 from pathlib import Path
 
 from machine import describe_machine
@@ -112,10 +113,8 @@ def converge_design(design):
 
 
 def base_case():
-    for line in args.sweep.read_text().splitlines():
-        if line.strip().startswith("base"):
-            return line.split("=", 1)[1].strip().strip('"')
-    raise SystemExit(f"{args.sweep}: no base case")
+    with args.sweep.open("rb") as sweep_file:
+        return tomllib.load(sweep_file)["base"]
 
 
 def expected_work(design):
