@@ -411,8 +411,6 @@ IdaIntegrator::InitialRates IdaIntegrator::make_initial_rates_consistent(double 
   else
     petsc_check(VecShift(weights.v, m.options.absolute_tolerance * m.tolerance_scale()), "VecShift");
   petsc_check(VecReciprocal(weights.v), "VecReciprocal");
-  PetscInt size = 0;
-  petsc_check(VecGetSize(m.y, &size), "VecGetSize");
 
   InitialRates result;
   while (result.iterations < max_iterations) {
@@ -428,8 +426,8 @@ IdaIntegrator::InitialRates IdaIntegrator::make_initial_rates_consistent(double 
     petsc_check(VecScale(update.v, probe_horizon / probe), "VecScale");
     petsc_check(VecPointwiseMult(update.v, update.v, weights.v), "VecPointwiseMult");
     double norm = 0.0;
-    petsc_check(VecNorm(update.v, NORM_2, &norm), "VecNorm");
-    result.last_update = norm / std::sqrt(static_cast<double>(size));
+    petsc_check(VecNorm(update.v, NORM_INFINITY, &norm), "VecNorm");
+    result.last_update = norm;
     if (result.last_update < 1e-3) {
       result.converged = true;
       break;

@@ -327,8 +327,9 @@ nlohmann::json run_case(const Case& c, const RunOptions& options) {
       const double horizon = times[1] - times[0];
       record.initial_rates = integrator.make_initial_rates_consistent(1e-6 * horizon, horizon);
       if (!record.initial_rates.converged && options.progress)
-        fmt::print(options.progress, "run: warning: the probe step for consistent initial rates did not converge "
-                   "(last update {:.3g}); IDA starts from zero rates\n", record.initial_rates.last_update);
+        fmt::print(options.progress, "run: note: the probe step for consistent initial rates did not converge at "
+                   "every unknown (largest weighted update {:.3g}); IDA starts from the tissue at rest, and the rates "
+                   "reported at t = 0 are zero\n", record.initial_rates.last_update);
     }
     double integration_s = 0.0;
     // Long output intervals still report progress: a line per accepted step, at most every few seconds.

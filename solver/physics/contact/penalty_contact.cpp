@@ -15,6 +15,11 @@ namespace needlefem::contact {
 
 namespace {
 
+// Half-width b of the return map's blend from stick to slip, in units of s₀ (penalty_contact.hpp),
+// and the elastic slip (1 + b) s₀ beyond which a point carries the Coulomb limit and is dragged.
+constexpr double kSlipBlend = 0.5;
+constexpr double kSlidingSlip = 1.0 + kSlipBlend;
+
 using elements::kTriangleRule;
 using elements::triangle_shape;
 constexpr double kMetresPerMm = 1e-3;
@@ -79,27 +84,42 @@ SlipVelocity slip_velocity(const ObstacleProjection& p, const Point3& velocity, 
   return out;
 }
 
-// Return map with the allowed elastic slip s₀ (penalty_contact.hpp):
-//   t_T = -μ p g_T / max(s₀, |g_T|).
+// Return map with the allowed elastic slip s₀ (penalty_contact.hpp), C¹ across stick and slip:
+//   t_T = -μ p φ(|g_T|/s₀) ĝ,  φ(x) = x (x <= 1 - b), x - (x - 1 + b)²/(4b) (|x - 1| < b), 1 (x >= 1 + b),
+// b = kSlipBlend. Newton matrix, with s = |g_T|: -μ p [(φ/s) D + (φ'/s₀ - φ/s) ĝ ĝᵀ D] + μ p' (φ/s) g_T nᵀ.
+struct SlipFraction {
+  double value = 0.0, slope = 0.0;  // φ(x), φ'(x)
+};
+SlipFraction slip_fraction(double x) {
+  constexpr double b = kSlipBlend;
+  if (x <= 1.0 - b) return {x, 1.0};
+  if (x >= 1.0 + b) return {1.0, 0.0};
+  const double over = x - 1.0 + b;
+  return {x - over * over / (4.0 * b), 1.0 - over / (2.0 * b)};
+}
+
 Tangential return_map(const ObstacleProjection& p, const Point3& position, const Point3& anchor,
                       const NormalPressure& normal, double mu, double allowed_slip, bool with_jacobian,
                       double pressure_coupling) {
   Tangential out;
   const Point3 r = difference(position, anchor), slip = tangential_part(p.normal, r);
-  const double size = std::sqrt(dot(slip, slip));
-  out.slipping = size > allowed_slip;
-  const double reach = out.slipping ? size : allowed_slip;  // max(s₀, |g_T|)
-  const double scale = mu * normal.pressure / reach;
+  const double size = std::sqrt(dot(slip, slip)), x = size / allowed_slip;
+  const SlipFraction phi = slip_fraction(x);
+  out.slipping = x >= kSlidingSlip;
+  // φ/s, which is 1/s₀ in the stick range (also at s = 0).
+  const double per_slip = x <= 1.0 - kSlipBlend ? 1.0 / allowed_slip : phi.value / size;
+  const double scale = mu * normal.pressure * per_slip;
   for (int i = 0; i < 3; ++i) out.traction[i] = -scale * slip[i];
   if (!with_jacobian) return out;
   const Matrix3 D = projected_gradient(p, r, true);
+  const double stretch = x <= 1.0 - kSlipBlend ? 0.0 : mu * normal.pressure * (phi.slope / allowed_slip - per_slip);
   for (int i = 0; i < 3; ++i)
     for (int k = 0; k < 3; ++k) {
-      double along_slip = 0.0;  // slip: (ĝ ĝᵀ D)_ik, the part of D that only stretches |g_T|
-      if (out.slipping)
+      double along_slip = 0.0;  // (ĝ ĝᵀ D)_ik, the part of D that only stretches |g_T|
+      if (stretch != 0.0)
         for (int j = 0; j < 3; ++j) along_slip += slip[i] * slip[j] / (size * size) * D[3 * j + k];
-      out.d_position[3 * i + k] =
-          pressure_coupling * mu * normal.stiffness * slip[i] / reach * p.normal[k] - scale * (D[3 * i + k] - along_slip);
+      out.d_position[3 * i + k] = pressure_coupling * mu * normal.stiffness * per_slip * slip[i] * p.normal[k] -
+                                  scale * D[3 * i + k] - stretch * along_slip;
     }
   return out;
 }
@@ -335,7 +355,7 @@ void PenaltyContact::accept_step(double t, const double* y, const double* ydot, 
       Point3 anchor = position;  // out of contact: re-anchor where the point is
       if (depth >= 0.0) {
         const Point3 slip = tangential_part(p.normal, difference(position, obstacle_->from_body(point.anchor, t)));
-        const double size = std::sqrt(dot(slip, slip)), allowed = faces_[f].elastic_slip;
+        const double size = std::sqrt(dot(slip, slip)), allowed = kSlidingSlip * faces_[f].elastic_slip;
         const double kept = size > allowed ? allowed / size : 1.0;  // a slipping point drags its anchor along
         for (int i = 0; i < 3; ++i) anchor[i] -= kept * slip[i];
       }
