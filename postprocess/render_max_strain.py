@@ -3,6 +3,7 @@ output time) on a cut plane through the needle axis, headless, to PNG.
 
 usage: xvfb-run -a pvbatch postprocess/render_max_strain.py RUN_DIR/result.xdmf [--png OUT.png]
            [--field NAME] [--normal x|y|z] [--offset-mm D] [--window-mm W] [--max V] [--size W H]
+           [--mark-mm X Y Z [--mark-radius-mm R]]
 (default OUT.png: result_max_log_strain.png next to the XDMF; /usr/bin/python3 with Debian's
 python3-paraview also runs it, under xvfb-run.)
 
@@ -13,13 +14,16 @@ view is parallel, insertion axis to the right, `--window-mm` wide around the nee
 (default: three tip lengths when the needle is meshed, else the whole cut). Colour range 0 .. max of the field unless --max is given.
 A scale bar under the field gives lengths in millimetres (a round length near a quarter of the
 field's width); the script's last line states it and where it is drawn, in pixels.
+--mark-mm draws, in red, where the ball of radius --mark-radius-mm (default 0.25, the critical
+distance) centred at X Y Z (reference position, mm) meets the plane: the spot a critical-distance
+value averages over (postprocess/study_report.py marks each limit's worst spot with it).
 """
 import argparse
 import os
 import sys
 
 from paraview.simple import (Clip, ColorBy, CreateView, GetColorTransferFunction, GetScalarBar, Ruler, Show, Slice,
-                             SaveScreenshot, Text, Threshold, Xdmf3ReaderS)
+                             SaveScreenshot, Sphere, Text, Threshold, Xdmf3ReaderS)
 
 NORMALS = {"x": [1.0, 0.0, 0.0], "y": [0.0, 1.0, 0.0], "z": [0.0, 0.0, 1.0]}
 # Camera direction and up vector per plane normal: insertion axis z to the right where it lies in the plane.
@@ -62,6 +66,8 @@ def main():
     parser.add_argument("--window-mm", type=float, help="width of the view around the needle tip")
     parser.add_argument("--max", type=float, help="upper end of the colour range")
     parser.add_argument("--size", type=int, nargs=2, default=[1200, 900])
+    parser.add_argument("--mark-mm", type=float, nargs=3, help="centre of a ball to outline on the plane")
+    parser.add_argument("--mark-radius-mm", type=float, default=0.25)
     args = parser.parse_args()
 
     xdmf = os.path.abspath(args.xdmf)  # ParaView's Xdmf3 reader fails on bare relative names
@@ -168,6 +174,18 @@ def main():
         needle_shown = crop(needle_cut)
         ColorBy(needle_shown, None)
         needle_shown.DiffuseColor = needle_shown.AmbientColor = [0.55, 0.55, 0.55]
+
+    if args.mark_mm:
+        # The ball's circle on the plane, moved a little towards the camera so the cut does not hide it.
+        ball = Sphere(Center=args.mark_mm, Radius=args.mark_radius_mm, ThetaResolution=96, PhiResolution=96)
+        ring = Slice(Input=ball)
+        ring.SliceType = "Plane"
+        ring.SliceType.Origin = [o + 0.02 * args.mark_radius_mm * d for o, d in zip(origin, direction)]
+        ring.SliceType.Normal = NORMALS[args.normal]
+        ring_shown = Show(ring, view)
+        ring_shown.DiffuseColor = ring_shown.AmbientColor = [0.85, 0.0, 0.0]
+        ring_shown.LineWidth = 3.0
+        ring_shown.Ambient, ring_shown.Diffuse = 1.0, 0.0  # flat red, unlit
 
     view.CameraFocalPoint = centre
     view.CameraPosition = [c + 100.0 * d for c, d in zip(centre, direction)]

@@ -462,6 +462,29 @@ def history(run_dir, png):
     finish(fig, png)
 
 
+def all_figures(sweep, out, design_grid=None, rate_grid=None):
+    """Every figure of the sweep into the folder `out` (the `all` command; the study report embeds them):
+    returns [(PNG path, caption)] in reading order."""
+    out = pathlib.Path(out)
+    drawn = [(out / "safety_map.png", "Verdict of each design (critical-distance values against the limits)",
+              lambda png: safety_map(sweep, png, grid=design_grid)),
+             (out / "safety_steering.png", "Safety margin of each limit against the lateral force on the needle",
+              lambda png: safety_steering(sweep, png, design_grid)),
+             (out / "fig4_stress_strain.png", "Max von Mises stress against max log strain per tip (paper 001 Fig. 4; "
+              "point maxima)", lambda png: stress_strain(sweep, png, design_grid)),
+             (out / "fig5_fillet.png", "Max von Mises stress against fillet radius (paper 001 Fig. 5; point maxima)",
+              lambda png: fillet(sweep, png, design_grid)),
+             (out / "fig6_strain_rate.png", "Max strain rate against time per speed (paper 001 Fig. 6; point maxima)",
+              lambda png: strain_rate(sweep, png, rate_grid))]
+    completed = sweep.indices()
+    if completed:
+        run_dir = sweep.dir / sweep.table["point"][completed[0]]
+        drawn.append((out / "history.png", f"Time histories of {run_dir.name}", lambda png: history(run_dir, png)))
+    for png, _, draw in drawn:
+        draw(png)
+    return [(png, caption) for png, caption, _ in drawn]
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     commands = parser.add_subparsers(dest="command", required=True)
@@ -497,15 +520,8 @@ def main(argv=None):
     elif args.command == "safety-map":
         safety_map(sweep, args.png or sweep.dir / "safety_map.png", args.x, args.y, args.grid)
     else:
-        out = pathlib.Path(args.out) if args.out else sweep.dir / "figures"
-        stress_strain(sweep, out / "fig4_stress_strain.png", args.design_grid)
-        fillet(sweep, out / "fig5_fillet.png", args.design_grid)
-        strain_rate(sweep, out / "fig6_strain_rate.png", args.rate_grid)
-        safety_map(sweep, out / "safety_map.png", grid=args.design_grid)
-        safety_steering(sweep, out / "safety_steering.png", args.design_grid)
-        completed = sweep.indices()
-        if completed:
-            history(sweep.dir / sweep.table["point"][completed[0]], out / "history.png")
+        all_figures(sweep, pathlib.Path(args.out) if args.out else sweep.dir / "figures", args.design_grid,
+                    args.rate_grid)
     return 0
 
 

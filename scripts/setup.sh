@@ -2,14 +2,14 @@
 # Install the Debian packages needlefem needs (only those missing), then configure and build.
 # Idempotent: a second run checks dpkg, skips apt, and lets CMake rebuild only what changed.
 #   scripts/setup.sh            core build dependencies + build
-#   scripts/setup.sh --tests    also what the test suite needs (ParaView, h5py, xvfb)
+#   scripts/setup.sh --tests    also what the test suite needs (ParaView, h5py, xvfb, Chromium for the study report)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build_dir=${NEEDLEFEM_BUILD_DIR:-$root/build}
 
 core_packages=(build-essential cmake pkg-config petsc-dev libsundials-dev libmetis-dev libsuitesparse-dev libgmsh-dev
   libopenblas0-pthread libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libfmt-dev libgtest-dev)
-test_packages=(python3-paraview python3-h5py python3-numpy python3-matplotlib xvfb xauth)
+test_packages=(python3-paraview python3-h5py python3-numpy python3-matplotlib xvfb xauth chromium)
 
 packages=("${core_packages[@]}")
 for arg in "$@"; do

@@ -36,6 +36,7 @@
 #include "run/needle_output.hpp"
 #include "run/output_schedule.hpp"
 #include "run/safety_report.hpp"
+#include "run/software_versions.hpp"
 
 namespace needlefem::run {
 
@@ -227,6 +228,7 @@ nlohmann::json summary_json(const Case& c, const material::Material* material, c
   if (const nlohmann::json resolution = mesh_resolution_json(c); !resolution.is_null())
     s["mesh_resolution"] = resolution;
   s["files"] = {{"result", "result.h5"}, {"xdmf", "result.xdmf"}, {"history", "history.csv"}};
+  s["software"] = software_versions();
   s["case"] = c.to_json();
   return s;
 }
