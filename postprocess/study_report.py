@@ -208,20 +208,22 @@ def data_uri(png):
 
 def render(run_dir, field, position_mm, radius_mm, png):
     """render_max_strain.py on the plane y = (the spot's y) with the averaging ball's circle; returns
-    (ok, message). pvbatch under xvfb-run, retried as tests/sweep/check_sweep.py does (a slow X start)."""
+    (ok, message). pvbatch under xvfb-run, retried (as tests/sweep/check_sweep.py does) because pvbatch
+    now and then aborts creating its X window on a loaded machine."""
     if not shutil.which("pvbatch") or not shutil.which("xvfb-run"):
         return False, "not rendered: pvbatch or xvfb-run not found (scripts/setup.sh --tests installs them)"
     command = ["xvfb-run", "-a", "-s", "-screen 0 1280x1024x24", "pvbatch", str(RENDER_SCRIPT),
                str(run_dir / "result.xdmf"), "--png", str(png), "--field", field, "--offset-mm", f"{position_mm[1]:.9g}",
                "--mark-mm", *(f"{x:.9g}" for x in position_mm), "--mark-radius-mm", f"{radius_mm:.9g}",
                "--size", "1000", "750"]
-    for attempt in range(3):
+    for attempt in range(4):
         if attempt:
-            time.sleep(3)
+            time.sleep(3 * attempt)
         result = subprocess.run(command, capture_output=True, text=True)
         if result.returncode == 0 and pathlib.Path(png).exists():
             return True, result.stdout.strip().splitlines()[0] if result.stdout.strip() else ""
-    return False, "not rendered: " + (result.stderr.strip().splitlines() or ["pvbatch failed"])[-1]
+    errors = [line for line in result.stderr.splitlines() if "INFO" not in line and line.strip()]
+    return False, "not rendered: " + " | ".join(errors[-3:] or ["pvbatch failed"])
 
 
 def worst_locations(sweep, summaries, work, do_render):

@@ -234,6 +234,11 @@ def figures(args):
         expected = ("pass", "") if ramp > 0.1 else ("fail", "strain_rate_per_s")
         mark = sweep_figures.map_mark(table, i)
         check(mark == expected, f"safety map marks {table.table['point'][i]} {mark} (expected {expected})")
+        # ... which are the summary's critical-distance verdicts (safety.<limit>.verdict), not the point maxima.
+        safety = table.summary(i)["safety"]
+        failing = [name for name in LIMITS if safety[name]["verdict"] == "fail"]
+        check(mark[0] == ("fail" if failing else "pass") and mark[1].split(", ")[:len(failing)] == failing,
+              f"{table.table['point'][i]}: the mark is summary.json's safety verdicts (failing: {failing})")
     point = read_csv(sweep_dir)[0]["point"]
     png = out / "max_log_strain.png"
     # A 24-bit screen for GLX; two retries a few seconds apart, because pvbatch now and then aborts
@@ -342,8 +347,10 @@ def full_grid(out):
         for column, value in zip(columns, [name, "main", radius, bevel, fillet, status]):
             table[column].append(value)
         passes = int(n % 3 != 0)
-        for column in ["verdict", *verdicts, "safe"]:
+        for column in ["verdict", *verdicts]:
             table[column].append(passes if status == "completed" else -1)
+        # The point maxima disagree with the critical-distance verdict on every other design.
+        table["safe"].append((passes if n % 2 else 1 - passes) if status == "completed" else -1)
         table["rules"].append("fillet-fits-bevel: the fillet does not fit the bevel face, core-contains-needle"
                               if status == "impossible" else "")
         if status != "completed":
@@ -389,6 +396,11 @@ def full_grid_figures(args):
           "Fig. 4: the legend lies outside the axes")
     fig = sweep_figures.safety_map(table, out / "safety_map.png")
     check(png_ok(out / "safety_map.png"), "safety_map.png written and not blank")
+    marks = [sweep_figures.map_mark(table, i)[0] for i in table.indices()]
+    by_verdict = ["pass" if table.table["verdict"][i] == 1 else "fail" for i in table.indices()]
+    by_maxima = ["pass" if table.table["safe"][i] == 1 else "fail" for i in table.indices()]
+    check(marks == by_verdict and marks != by_maxima,
+          "safety map: each design marked by its critical-distance verdict, not by the point maxima")
     renderer = fig.canvas.get_renderer()
     labels = [a.get_xlabel() for a in fig.axes] + [a.get_ylabel() for a in fig.axes if a.get_ylabel()]
     check(all("[" in label and "." not in label.split("[")[0] for label in labels if label),
