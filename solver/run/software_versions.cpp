@@ -7,7 +7,7 @@
 
 #include <fmt/core.h>
 
-#include "run/git_commit.hpp"  // generated in the build tree (solver/run/git_commit.cmake)
+#include "git_commit.hpp"  // generated in the build tree (solver/run/git_commit.cmake)
 
 namespace needlefem::run {
 
