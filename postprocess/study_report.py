@@ -196,7 +196,7 @@ def match_bands(sweep, band_designs):
         for i in rows:
             matched[i] = bands
         if not rows:
-            unmatched.append(name)
+            unmatched.append(name if values is not None else f"{name} (no level_*/summary.json to match by)")
     return matched, unmatched
 
 

@@ -240,7 +240,7 @@ def main():
           f"the software table shows what the runs recorded: {dom.software_cells}")
 
     shot = out / "report.png"
-    shot_run = chromium(args, page.resolve().as_uri(), "--window-size=1400,4200", f"--screenshot={shot}")
+    shot_run = chromium(args, page.resolve().as_uri(), "--window-size=1400,5600", f"--screenshot={shot}")
     check(shot_run.returncode == 0 and shot.exists() and png_ok(shot.read_bytes()),
           f"chromium --screenshot: {shot} written and not blank")
     print(f"{len(failures)} check(s) failed" if failures else "every check passed")
