@@ -38,6 +38,9 @@ import sys
 import tempfile
 import time
 
+import h5py
+import matplotlib
+
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 import sweep_figures  # noqa: E402
 from sweep_figures import SAFETY_LIMITS, Sweep  # noqa: E402
@@ -202,6 +205,11 @@ def match_bands(sweep, band_designs):
 
 # --- pictures ----------------------------------------------------------------------------------
 
+def png_width(png):
+    """Pixel width from the PNG header (a wide figure, e.g. a safety map of many panels, gets the page's width)."""
+    return int.from_bytes(pathlib.Path(png).read_bytes()[16:20], "big")
+
+
 def data_uri(png):
     return "data:image/png;base64," + base64.b64encode(pathlib.Path(png).read_bytes()).decode("ascii")
 
@@ -261,7 +269,7 @@ th { background: #f0f0f0; }
 td.pass { background: #dff0d8; } td.fail { background: #f2dede; } td.undecided { background: #fcf8e3; }
 .note { color: #555; font-size: 0.85em; } .warning { color: #b00; }
 figure { display: inline-block; margin: 0.5em; vertical-align: top; width: 640px; max-width: 100%; }
-figure img { width: 100%; border: 1px solid #ddd; } figcaption { font-size: 0.85em; max-width: 900px; }
+figure img { width: 100%; border: 1px solid #ddd; } figure.wide { width: 1300px; } figcaption { font-size: 0.85em; max-width: 900px; }
 pre { background: #f7f7f7; padding: 0.5em; font-size: 0.8em; overflow-x: auto; }
 """
 
@@ -334,7 +342,8 @@ def design_table(sweep, summaries, bands):
         cells.append(f"<td>{e(maxima)}</td>")
         wall = summary.get("solver", {}).get("wall_s")
         cells.append(f"<td>{e(number(wall))}</td>")
-        notes = [t["rules"][i], t["error"][i]] + ([t["coarse_mesh"][i]] if "coarse_mesh" in t else [])
+        # The error names the violated rule; the coarse mesh is spelt out once, above the table.
+        notes = [t["error"][i] or t["rules"][i], "coarse mesh" if "coarse_mesh" in t and t["coarse_mesh"][i] else ""]
         cells.append(f"<td class='note'>{e('; '.join(n for n in notes if n))}</td>")
         attrs = " ".join(f'{k}="{e(v)}"' for k, v in attributes.items())
         rows.append(f"<tr class='design' {attrs}>" + "".join(cells) + "</tr>")
@@ -360,14 +369,13 @@ def software_section(summaries):
                  "needlefem wrote <code>software</code>).</p>")
     if len(combos) > 1:
         text += "<p class='warning'>The runs were made with different software.</p>"
-    import matplotlib
     text += (f"<p class='note'>Report drawn with Python {e(sys.version.split()[0])}, matplotlib "
              f"{e(matplotlib.__version__)}; pictures with ParaView's pvbatch.</p>")
     return text
 
 
 def settings_section(sweep, summaries):
-    with __import__("h5py").File(sweep.dir / "sweep.h5", "r") as f:
+    with h5py.File(sweep.dir / "sweep.h5", "r") as f:
         sweep_file = str(f.attrs.get("sweep_file", ""))
         base_case = str(f.attrs.get("base_case", ""))
     parts = [f"<p>Sweep file <code>{e(sweep_file)}</code>, base case <code>{e(base_case)}</code>.</p>"]
@@ -454,8 +462,8 @@ def page(sweep, summaries, figures, locations, bands, unmatched_bands, bands_pat
         band_note,
         design_table(sweep, summaries, bands),
         "<h2>Figures</h2>",
-        "".join(f"<figure><img alt='{e(png.stem)}' src='{data_uri(png)}'><figcaption>{e(caption)}</figcaption></figure>"
-                for png, caption in figures),
+        "".join(f"<figure class='{'wide' if png_width(png) > 1500 else ''}'><img alt='{e(png.stem)}' "
+                f"src='{data_uri(png)}'><figcaption>{e(caption)}</figcaption></figure>" for png, caption in figures),
         "<h2>Worst location of each limited metric</h2>",
         worst_section(locations),
         "<h2>Settings</h2>",

@@ -20,7 +20,6 @@ import csv
 import html.parser
 import io
 import json
-import os
 import pathlib
 import re
 import shutil
