@@ -398,6 +398,8 @@ def settings_section(sweep, summaries):
         if path and pathlib.Path(path).is_file():
             parts.append(f"<details open><summary>{e(title)} {e(path)}</summary><pre>"
                          f"{e(pathlib.Path(path).read_text())}</pre></details>")
+        elif path:  # the sweep records the path as it was given: relative to where it ran
+            parts.append(f"<p class='note'>The {e(title)} {e(path)} is not found from {e(pathlib.Path.cwd())}.</p>")
     if first:
         parts.append("<details><summary>resolved case of the first completed design (every key)</summary><pre>"
                      f"{e(json.dumps(first.get('case', {}), indent=1))}</pre></details>")
