@@ -52,9 +52,9 @@ FdErrors compare_with_finite_differences(std::shared_ptr<const RigidObstacle> ob
   parameters.slip_velocity_regularisation = 2e-5;
   parameters.friction_law = law;
   parameters.friction_tangent = FrictionTangent::consistent;
-  // Return map: an allowed elastic slip of 5 µm (0.005 of the 1 mm faces), so that the tangential
-  // slips the ±20 µm node jitter below gives the quadrature points fall in all three ranges of the
-  // law: stick (below 2.5 µm), the blend to slip, and slip (beyond 7.5 µm).
+  // Return map: an elastic slip s0 of 5 µm (0.005 of the 1 mm faces), so that the tangential slips
+  // the ±20 µm node jitter below gives the quadrature points fall on both sides of 2 s0: some stick
+  // on the falling stick stiffness, some slide.
   parameters.elastic_slip = 0.005;
   parameters.rate_strengthening = rate_strengthening;
   const PenaltyContact contact(mesh, "z_max", obstacle, parameters);

@@ -17,7 +17,7 @@ namespace {
 
 // Half-width b of the return map's blend from stick to slip, in units of s₀ (penalty_contact.hpp),
 // and the elastic slip (1 + b) s₀ beyond which a point carries the Coulomb limit and is dragged.
-constexpr double kSlipBlend = 0.5;
+constexpr double kSlipBlend = 1.0;
 constexpr double kSlidingSlip = 1.0 + kSlipBlend;
 
 using elements::kTriangleRule;

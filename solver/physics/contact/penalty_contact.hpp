@@ -55,22 +55,25 @@
 // elastic slip g_T = P r, ĝ = g_T/|g_T| and x = |g_T|/s₀, s₀ = e h_face (e = elastic_slip,
 // default 0.005 as in Abaqus), the friction traction is
 //   t_T = -μ p_N φ(x) ĝ,
-//   φ(x) = x (x <= 1 - b),   x - (x - 1 + b)²/(4b) (|x - 1| < b),   1 (x >= 1 + b),   b = 1/2:
-// stick on the tangential stiffness μ p_N / s₀, slip at exactly the Coulomb limit μ p_N opposite
-// to g_T (the radial return), and between them a quadratic blend that makes t_T continuously
-// differentiable in g_T. After each step the integrator accepts (accept_step), a sliding point's
-// anchor is dragged along to |g_T| = (1 + b) s₀ (a = x - (1 + b) s₀ ĝ), any other point in
-// contact keeps its anchor, and points out of contact re-anchor where they are: the
-// backward-Euler integral of Coulomb's rate-independent stick-slip relative to the last accepted
-// state. Effect of the regularisation: a sticking point moves at most 1.5 s₀ (2.3 µm on 0.3 mm
-// faces) relative to the needle; sliding points carry exactly μ p_N.
+//   φ(x) = x (x <= 1 - b),   x - (x - 1 + b)²/(4b) (|x - 1| < b),   1 (x >= 1 + b),   b = 1,
+// i.e. φ(x) = x - x²/4 up to x = 2 and 1 beyond: stick on the tangential stiffness μ p_N / s₀ at
+// g_T = 0, falling linearly to zero at |g_T| = 2 s₀, beyond which the point slides at exactly the
+// Coulomb limit μ p_N opposite to g_T (the radial return); t_T is continuously differentiable in
+// g_T. After each step the integrator accepts (accept_step), a sliding point's anchor is dragged
+// along to |g_T| = (1 + b) s₀ (a = x - (1 + b) s₀ ĝ), any other point in contact keeps its
+// anchor, and points out of contact re-anchor where they are: the backward-Euler integral of
+// Coulomb's rate-independent stick-slip relative to the last accepted state. Effect of the
+// regularisation: a sticking point moves at most 2 s₀ (3 µm on 0.3 mm faces) relative to the
+// needle; sliding points carry exactly μ p_N.
 // Why the blend: with the plain kink t_T = -μ p_N g_T / max(s₀, |g_T|) the Newton matrix jumps
 // from μ p_N/s₀ to the slip's, which is singular along ĝ, where a point crosses s₀; Newton's
 // updates stop contracting when points cross it between iterates, and IDA cuts the step and
-// refactors the matrix. Measured on the Table I tip r = 0.83 mm, 10°, 0.15 mm (level-0 mesh,
-// docs/accuracy.md §8), from 0 to 0.06 s: the kink took 130 steps, 542 Newton iterations, 57
-// convergence failures and 42 factorisations; the blend 58 steps, 105 iterations, 4 failures
-// and 6 factorisations.
+// refactors the matrix. Measured on the Table I tip r = 0.83 mm, 10°, 0.15 mm (level-0 mesh, one
+// mesh for all three; docs/accuracy.md §8): the kink took 130 steps, 542 Newton iterations, 57
+// convergence failures and 42 factorisations to t = 0.06 s and did not finish; b = 1/2 took
+// 182 steps, 767 iterations, 34 failures and 28 factorisations to 0.1 s; b = 1 163, 435, 24 and
+// 20. b moved the needle loads and the critical-distance strain and stress by at most 0.04 %, the
+// critical-distance strain rate by 16 % (a slip event under way at the last output time).
 // Why the stick stiffness scales with p_N and not with ε_N: the stick zone is then s₀ wide at
 // every pressure. With ε_T = ε_N it was μ p_N/ε_N, nanometres at the shaft's near-zero
 // pressures, below Newton's resolution, and hundreds of points flipped between stick and slip at
@@ -93,7 +96,7 @@
 // law's c_j μ p/ε_v does not), which is what lets IDA cut its way through stick/slip transitions.
 // Newton matrix (no c_j part), with D = ∂g_T/∂x = P - (n·r) G - n (rᵀ G), s = |g_T|, p' = dp_N/dd:
 //   ∂t_T/∂x = μ p' (φ/s) g_T nᵀ - μ p_N [(φ/s) D + (φ'/s₀ - φ/s) ĝ ĝᵀ D]
-// (φ/s = 1/s₀ and the last term vanishes in the stick range).
+// (φ/s -> 1/s₀ and the last term -> 0 as g_T -> 0).
 //
 // velocity (regularised by the slip velocity through y' of IDA; Wriggers 2006 §5.2, Oden &
 // Martins 1985):
