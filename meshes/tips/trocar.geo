@@ -4,6 +4,10 @@
 r = 0.5;        // needle radius
 alpha = 20;     // facet angle to the axis, deg
 shaft = 0.1;    // straight shaft behind the facets' heels
+flat = 0.2;     // blunted point: a flat across the facets where their inscribed circle has this
+                // diameter (0: sharp). The contact needle rounds every edge by needle.edge_radius_um
+                // (0.1 mm by default), so a sharper point is not the needle in contact; the sharp
+                // tip's run stalled at 0.08 s (docs/accuracy.md).
 SetFactory("OpenCASCADE");
 deg = Pi / 180;
 tip = shaft + r / Tan(alpha * deg);  // the point, on the axis
@@ -15,4 +19,9 @@ For k In {0 : 2}
   Rotate {{0, 1, 0}, {0, 0, tip}, Pi / 2 - alpha * deg} { Volume{2 + k}; }
   Rotate {{0, 0, 1}, {0, 0, tip}, k * 2 * Pi / 3} { Volume{2 + k}; }
 EndFor
-BooleanDifference(10) = { Volume{1}; Delete; }{ Volume{2, 3, 4}; Delete; };
+cuts[] = {2, 3, 4};
+If (flat > 0)
+  Box(5) = {-5, -5, tip - flat / 2 / Tan(alpha * deg), 10, 10, 10};
+  cuts[] += 5;
+EndIf
+BooleanDifference(10) = { Volume{1}; Delete; }{ Volume{cuts[]}; Delete; };

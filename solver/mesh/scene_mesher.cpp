@@ -232,8 +232,9 @@ std::vector<int> sharp_cad_curves(const std::vector<int>& cavity) {
     gmsh::model::getValue(1, curve, {0.5 * (lo[0] + hi[0])}, mid);
     int k = 0;
     for (int s : surfaces) {
-      std::vector<double> closest, uv;
-      gmsh::model::getClosestPoint(2, s, mid, closest, uv);
+      // (getClosestPoint's parametric coordinates put a fillet's normal at its crest)
+      std::vector<double> uv;
+      gmsh::model::getParametrization(2, s, mid, uv);
       gmsh::model::getNormal(s, uv, normal[k++]);
     }
     const double cosine = normal[0][0] * normal[1][0] + normal[0][1] * normal[1][1] + normal[0][2] * normal[1][2];
