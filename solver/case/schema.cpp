@@ -150,8 +150,9 @@ std::vector<KeySpec> build_schema() {
            "curved faces follow needle.cad_facet_deg)"),
       real("needle.cad_facet_deg", 1.5, 0.0, 5.0,
            "needle.kind = \"cad\": angle a facet of the contact needle spans on a curved face (facet = radius x "
-           "angle). The normals of neighbouring facets differ by it; 3 deg (20 um facets on the paper's tip) "
-           "stalled Newton where the tissue slides over them, 1 deg did not (docs/accuracy.md)"),
+           "angle). The normals of neighbouring facets differ by it: 3 deg (20 um facets on the paper's tip) "
+           "stalled Newton where the tissue slides over them, 1.5 deg ran like the analytic needle "
+           "(docs/accuracy.md section 9)"),
       real("needle.radius_mm", 0.5, 0.0, 100.0, "Needle (shaft and head) radius r"),
       real("needle.bevel_deg", 20.0, 0.0, 90.0,
            "Bevel angle alpha between the bevel plane and the needle axis (ignored when fillet = radius)"),

@@ -1,5 +1,5 @@
 // A rigid needle tip from CAD (needle.kind = "cad"): the closed triangulation of the CAD solid
-// (mesh/cad_tip.hpp, facets of needle.cad_facet_um), needle frame, axis +z, rear face on z = 0.
+// (mesh/cad_tip.hpp, facets of needle.cad_facet_um and needle.cad_facet_deg), needle frame, axis +z, rear face on z = 0.
 //
 // Edge rounding, the same construction as the analytic bevel (needle_obstacle.hpp): the needle
 // is the core C_ρ ⊕ ball(ρ), C_ρ the tip with every face moved inwards by ρ, so
