@@ -102,7 +102,10 @@ CadTipTriangulation triangulate_cad_tip(const Case& c) {
       gmsh::option::setNumber("Mesh.MeshSizeMax", facet);
       gmsh::option::setNumber("Mesh.MeshSizeMin", 0.0);
       gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", std::ceil(360.0 / c.real("needle.cad_facet_deg")));
-      gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);  // flat faces: cad_facet_um inside
+      // Sizes extend from the boundary curves into the faces: where a flat face's facets meet a curved
+      // edge, the trimmed core's edge (cad_needle.hpp) is their chord, off the curved edge by s²/(8R);
+      // a run with 50 µm facets inside the bevel face (sizes not extended) stalled at t = 0.08 s on
+      // the paper's tip at the default mesh.
       // Delaunay: half the time of the default Frontal-Delaunay on the paper tip (77k facets, 6.7 s
       // against 14 s on a loaded core); MeshAdapt took 177 s.
       gmsh::option::setNumber("Mesh.Algorithm", 5);
