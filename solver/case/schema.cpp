@@ -146,8 +146,8 @@ std::vector<KeySpec> build_schema() {
            "file, the format by its extension (.step, .brep): the bevel tip exported so and read back with "
            "needle.kind = \"cad\" is the same shape. Relative to the case file"),
       real("needle.cad_facet_um", 50.0, 0.0, 1000.0,
-           "needle.kind = \"cad\": largest facet of the triangulation the contact needle is (on its flat faces; "
-           "curved faces follow needle.cad_facet_deg)"),
+           "needle.kind = \"cad\": largest facet of the triangulation the contact needle is (inside flat faces, "
+           "away from curved edges; curved faces and edges follow needle.cad_facet_deg)"),
       real("needle.cad_facet_deg", 1.5, 0.0, 5.0,
            "needle.kind = \"cad\": angle a facet of the contact needle spans on a curved face (facet = radius x "
            "angle). The normals of neighbouring facets differ by it: 3 deg (20 um facets on the paper's tip) "

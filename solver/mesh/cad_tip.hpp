@@ -30,8 +30,9 @@ struct CadTipTriangulation {
   double cad_volume_m3 = 0.0;                   // from the OpenCASCADE model
 };
 
-// The tip's boundary triangulated with facets of at most needle.cad_facet_um, spanning at most
-// needle.cad_facet_deg on curved faces (own gmsh session).
+// The tip's boundary triangulated with facets spanning at most needle.cad_facet_deg on curved
+// faces and edges, the sizes extended from the edges into the faces, at most needle.cad_facet_um
+// (own gmsh session).
 CadTipTriangulation triangulate_cad_tip(const Case& c);
 
 }  // namespace needlefem
