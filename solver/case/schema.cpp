@@ -133,9 +133,26 @@ std::vector<KeySpec> build_schema() {
               "(the paper used none: 0.4 mm everywhere in the core)"),
 
       // --- needle tip ---------------------------------------------------------------------------
-      choice("needle.kind", "bevel", {"bevel", "compliant"},
+      choice("needle.kind", "bevel", {"bevel", "compliant", "cad"},
              "bevel: cylinder with a bevel plane and a side-profile tip fillet (paper 001); "
-             "compliant: magnetised head, thin neck (hinge) and shaft (paper 000)"),
+             "compliant: magnetised head, thin neck (hinge) and shaft (paper 000); "
+             "cad: the tip of needle.cad_file (the cavity carved from it, the contact needle its surface)"),
+      text("needle.cad_file", "",
+           "needle.kind = \"cad\": the tip as one closed solid in a STEP (.step, .stp), BREP (.brep) or gmsh "
+           ".geo (OpenCASCADE) file, in millimetres, axis along +z, tip towards +z, a planar rear face on z = 0 "
+           "(flush with the entry face), inside the core. Relative to the case file. Tip families: meshes/tips/"),
+      text("needle.export_file", "",
+           "Brain-tip scene: when meshing, also write the needle tip as built (any kind, millimetres) to this CAD "
+           "file, the format by its extension (.step, .brep): the bevel tip exported so and read back with "
+           "needle.kind = \"cad\" is the same shape. Relative to the case file"),
+      real("needle.cad_facet_um", 50.0, 0.0, 1000.0,
+           "needle.kind = \"cad\": largest facet of the triangulation the contact needle is (inside flat faces, "
+           "away from curved edges; curved faces and edges follow needle.cad_facet_deg)"),
+      real("needle.cad_facet_deg", 1.5, 0.0, 5.0,
+           "needle.kind = \"cad\": angle a facet of the contact needle spans on a curved face (facet = radius x "
+           "angle). The normals of neighbouring facets differ by it: 3 deg (20 um facets on the paper's tip) "
+           "stalled Newton where the tissue slides over them, 1.5 deg ran like the analytic needle "
+           "(docs/accuracy.md section 9)"),
       real("needle.radius_mm", 0.5, 0.0, 100.0, "Needle (shaft and head) radius r"),
       real("needle.bevel_deg", 20.0, 0.0, 90.0,
            "Bevel angle alpha between the bevel plane and the needle axis (ignored when fillet = radius)"),
@@ -145,7 +162,7 @@ std::vector<KeySpec> build_schema() {
            false),
       real("needle.edge_radius_um", 100.0, 0.0, 1000.0,
            "Bevel tip: radius rho of the rounding of the bevel-cylinder and fillet-cylinder edges (capped by the "
-           "fillet). The contact needle is rounded with it (its normal is then continuous where the tissue "
+           "fillet); CAD tip: of every convex edge. The contact needle is rounded with it (its normal is then continuous where the tissue "
            "presses on an edge) and the mesh is graded to resolve it (element size rho / 2^mesh.refinement_level "
            "on the edges). A ground needle's edge radius is a few to some tens of micrometres; the default is "
            "the smallest radius with which the penalty contact's Newton iteration ran the default tip on the "

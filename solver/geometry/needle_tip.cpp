@@ -120,14 +120,17 @@ std::vector<RuleViolation> CompliantTip::violations() const {
 }
 
 double NeedleTip::analytic_volume() const {
+  if (kind == Kind::Cad) return 0.0;
   return kind == Kind::Bevel ? bevel.analytic_volume() : compliant.analytic_volume();
 }
 
 std::vector<RuleViolation> NeedleTip::violations() const {
+  if (kind == Kind::Cad) return {};
   return kind == Kind::Bevel ? bevel.violations() : compliant.violations();
 }
 
 std::string NeedleTip::describe() const {
+  if (kind == Kind::Cad) return fmt::format("CAD tip {}", cad_file);
   if (kind == Kind::Compliant)
     return fmt::format("compliant tip r = {}, neck {} x {}, head {}", mm(compliant.radius),
                        mm(compliant.neck_length), mm(compliant.neck_diameter), mm(compliant.head_length));
@@ -139,7 +142,10 @@ std::string NeedleTip::describe() const {
 NeedleTip needle_tip_from_case(const Case& c) {
   NeedleTip tip;
   const double m = 1.0 / kMmPerM;
-  if (c.text("needle.kind") == "compliant") {
+  if (c.text("needle.kind") == "cad") {
+    tip.kind = NeedleTip::Kind::Cad;
+    tip.cad_file = c.path("needle.cad_file").string();
+  } else if (c.text("needle.kind") == "compliant") {
     tip.kind = NeedleTip::Kind::Compliant;
     tip.compliant = {c.real("needle.radius_mm") * m,         c.real("needle.shaft_mm") * m,
                      c.real("needle.neck_length_mm") * m,    c.real("needle.neck_diameter_mm") * m,
@@ -165,6 +171,7 @@ std::vector<RuleViolation> brain_tip_scene_violations(const Case& c, const Needl
     out.push_back({"core-inside-cube",
                    fmt::format("core width {} must be smaller than the cube edge {}", mm(core), mm(edge)),
                    "tissue.core_width_mm"});
+  if (tip.kind == NeedleTip::Kind::Cad) return out;  // its rules: mesh/cad_tip.hpp, once gmsh has read it
   if (tip.radius() >= core / 2)
     out.push_back({"core-contains-needle", fmt::format("needle radius {} must be smaller than half the core "
                                                        "width ({})", mm(tip.radius()), mm(core / 2))});

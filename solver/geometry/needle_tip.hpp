@@ -54,13 +54,18 @@ struct CompliantTip {
   std::vector<RuleViolation> violations() const;
 };
 
-// The needle described by a case ([needle] table), tagged by kind.
+// The needle described by a case ([needle] table), tagged by kind. A CAD tip (needle.cad_file)
+// is known only once gmsh has read it (mesh/cad_tip.hpp, which checks its rules): here its
+// radius, length and volume are 0 and it has no rules of its own.
 struct NeedleTip {
-  enum class Kind { Bevel, Compliant } kind = Kind::Bevel;
+  enum class Kind { Bevel, Compliant, Cad } kind = Kind::Bevel;
   BevelTip bevel;
   CompliantTip compliant;
-  double radius() const { return kind == Kind::Bevel ? bevel.radius : compliant.radius; }
-  double length() const { return kind == Kind::Bevel ? bevel.length() : compliant.length(); }
+  std::string cad_file;
+  double radius() const { return kind == Kind::Bevel ? bevel.radius : kind == Kind::Compliant ? compliant.radius : 0.0; }
+  double length() const {
+    return kind == Kind::Bevel ? bevel.length() : kind == Kind::Compliant ? compliant.length() : 0.0;
+  }
   double analytic_volume() const;
   std::vector<RuleViolation> violations() const;
   std::string describe() const;

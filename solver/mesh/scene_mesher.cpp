@@ -22,6 +22,7 @@
 
 #include "case/case.hpp"
 #include "geometry/needle_tip.hpp"
+#include "mesh/cad_tip.hpp"
 #include "mesh/gmsh_session.hpp"
 
 namespace needlefem {
@@ -103,6 +104,14 @@ int add_compliant_tip(const CompliantTip& tip) {
   return out[0].second;
 }
 
+int add_needle_tip(const Case& c, const NeedleTip& tip) {
+  const int needle = tip.kind == NeedleTip::Kind::Bevel       ? add_bevel_tip(tip.bevel)
+                     : tip.kind == NeedleTip::Kind::Compliant ? add_compliant_tip(tip.compliant)
+                                                              : import_cad_tip(c);
+  occ::synchronize();
+  return needle;
+}
+
 namespace {
 
 std::set<int> tags_of(const DimTags& dim_tags) {
@@ -180,17 +189,23 @@ constexpr double kSurfaceSizePerCore = 0.5;
 constexpr double kGrowth = 0.4;
 double level_factor(const Case& c) { return std::ldexp(1.0, -static_cast<int>(c.integer("mesh.refinement_level"))); }
 
-// The curves where two cavity surfaces meet at an angle: the bevel-cylinder and fillet-cylinder
-// edges. Not the rim on the entry face (one cavity surface), nor the cylinder's seam (one
-// surface), nor the bevel-fillet junction, where the profile's arc is tangent to the bevel line:
-// the side profile is extruded along y, so its junctions are the straight curves along y.
-std::vector<int> sharp_cavity_curves(const std::vector<int>& cavity) {
+// The cavity surfaces each curve of the cavity bounds.
+std::map<int, std::set<int>> cavity_surfaces_of_curves(const std::vector<int>& cavity) {
   std::map<int, std::set<int>> surfaces_of_curve;
   for (int s : cavity) {
     DimTags curves;
     gmsh::model::getBoundary({{2, s}}, curves, /*combined=*/false, /*oriented=*/false);
     for (const auto& [dim, tag] : curves) surfaces_of_curve[std::abs(tag)].insert(s);
   }
+  return surfaces_of_curve;
+}
+
+// The curves where two cavity surfaces meet at an angle: the bevel-cylinder and fillet-cylinder
+// edges. Not the rim on the entry face (one cavity surface), nor the cylinder's seam (one
+// surface), nor the bevel-fillet junction, where the profile's arc is tangent to the bevel line:
+// the side profile is extruded along y, so its junctions are the straight curves along y.
+std::vector<int> sharp_cavity_curves(const std::vector<int>& cavity) {
+  const std::map<int, std::set<int>> surfaces_of_curve = cavity_surfaces_of_curves(cavity);
   std::vector<int> sharp;
   for (const auto& [curve, surfaces] : surfaces_of_curve) {
     if (surfaces.size() < 2) continue;
@@ -199,6 +214,31 @@ std::vector<int> sharp_cavity_curves(const std::vector<int>& cavity) {
     const double tol = 1e-6 * std::max({b[3] - b[0], b[4] - b[1], b[5] - b[2]});
     const bool along_y = b[3] - b[0] <= tol && b[5] - b[2] <= tol;
     if (!along_y) sharp.push_back(curve);
+  }
+  return sharp;
+}
+
+// A CAD tip's sharp edges: the curves shared by two cavity surfaces whose normals differ at the
+// curve's midpoint by more than kSharpDeg (tangent junctions, such as a fillet running into a
+// face, are not edges). On the exported bevel tip this picks the curves sharp_cavity_curves does.
+constexpr double kSharpDeg = 5.0;
+std::vector<int> sharp_cad_curves(const std::vector<int>& cavity) {
+  const std::map<int, std::set<int>> surfaces_of_curve = cavity_surfaces_of_curves(cavity);
+  std::vector<int> sharp;
+  for (const auto& [curve, surfaces] : surfaces_of_curve) {
+    if (surfaces.size() != 2) continue;
+    std::vector<double> lo, hi, mid, normal[2];
+    gmsh::model::getParametrizationBounds(1, curve, lo, hi);
+    gmsh::model::getValue(1, curve, {0.5 * (lo[0] + hi[0])}, mid);
+    int k = 0;
+    for (int s : surfaces) {
+      // (getClosestPoint's parametric coordinates put a fillet's normal at its crest)
+      std::vector<double> uv;
+      gmsh::model::getParametrization(2, s, mid, uv);
+      gmsh::model::getNormal(s, uv, normal[k++]);
+    }
+    const double cosine = normal[0][0] * normal[1][0] + normal[0][1] * normal[1][1] + normal[0][2] * normal[1][2];
+    if (std::abs(cosine) < std::cos(kSharpDeg * kPi / 180)) sharp.push_back(curve);
   }
   return sharp;
 }
@@ -218,8 +258,9 @@ int threshold_field(int distance_field, double size_min, double size_max, double
 
 // Adds the edge and surface fields (see above) and returns them; fills the targets in `grading`
 // and the sharp edges' curve tags in `edges`.
-std::vector<int> add_needle_grading(const Case& c, const BevelTip& tip, const std::vector<int>& cavity,
-                                    NeedleGrading& grading, std::vector<int>& edges) {
+// `sharp_edges`: the cavity's sharp curves, `edge_radius_mm`: their rounding ρ (0: none).
+std::vector<int> add_needle_grading(const Case& c, const std::vector<int>& sharp_edges, double edge_radius_mm,
+                                    const std::vector<int>& cavity, NeedleGrading& grading, std::vector<int>& edges) {
   namespace field = gmsh::model::mesh::field;
   const double factor = level_factor(c), h_core = c.real("tissue.core_element_mm");
   grading.core_mm = h_core;
@@ -238,8 +279,8 @@ std::vector<int> add_needle_grading(const Case& c, const BevelTip& tip, const st
   field::setNumber(surface_distance, "NNodesByEdge", std::ceil(2.0 * extent / grading.surface_target_mm) + 1);
   fields.push_back(threshold_field(surface_distance, grading.surface_target_mm, h_core, grading.grading_distance_mm));
 
-  edges = tip.rounded() ? std::vector<int>{} : sharp_cavity_curves(cavity);
-  grading.edge_radius_mm = std::min(tip.fillet * kMmPerM, c.real("needle.edge_radius_um") / kMmPerM);
+  edges = sharp_edges;
+  grading.edge_radius_mm = edge_radius_mm;
   if (!(grading.edge_radius_mm > 0)) edges.clear();  // a sharp tip (τ = 0): its edges stay sharp
   grading.edge_curves = static_cast<int>(edges.size());
   if (edges.empty()) return fields;
@@ -430,11 +471,13 @@ SceneMeshInfo mesh_brain_tip(const Case& c, const std::filesystem::path& msh_fil
   info.needle_analytic_volume_m3 = tip.analytic_volume();
   info.domain_volume_m3 = std::pow(edge / kMmPerM, 3);
 
-  const int needle = tip.kind == NeedleTip::Kind::Bevel ? add_bevel_tip(tip.bevel) : add_compliant_tip(tip.compliant);
-  occ::synchronize();
+  const int needle = add_needle_tip(c, tip);
   double cad_volume_mm3 = 0;
   occ::getMass(3, needle, cad_volume_mm3);
   info.needle_cad_volume_m3 = cad_volume_mm3 / std::pow(kMmPerM, 3);
+  // A CAD tip has no independent volume: its own is the reference.
+  if (tip.kind == NeedleTip::Kind::Cad) info.needle_analytic_volume_m3 = info.needle_cad_volume_m3;
+  if (!c.path("needle.export_file").empty()) gmsh::write(c.path("needle.export_file").string());
 
   const int cube = occ::addBox(-edge / 2, -edge / 2, 0, edge, edge, edge);
   const int core_box = occ::addBox(-core / 2, -core / 2, 0, core, core, edge);
@@ -502,8 +545,14 @@ SceneMeshInfo mesh_brain_tip(const Case& c, const std::filesystem::path& msh_fil
     gmsh::model::mesh::field::setNumbers(size_field, "FieldsList", {double(box_field), double(neck_field)});
   }
   std::vector<int> edges;  // the cavity's sharp edges
-  if (tip.kind == NeedleTip::Kind::Bevel) {
-    std::vector<int> size_fields = add_needle_grading(c, tip.bevel, groups["cavity"], info.grading, edges);
+  if (tip.kind != NeedleTip::Kind::Compliant) {
+    const double edge_um = c.real("needle.edge_radius_um");
+    const bool bevel = tip.kind == NeedleTip::Kind::Bevel, rounded = bevel && tip.bevel.rounded();
+    const std::vector<int> sharp = rounded ? std::vector<int>{}
+                                   : bevel ? sharp_cavity_curves(groups["cavity"])
+                                           : sharp_cad_curves(groups["cavity"]);
+    const double rho_mm = bevel ? std::min(tip.bevel.fillet * kMmPerM, edge_um / kMmPerM) : edge_um / kMmPerM;
+    std::vector<int> size_fields = add_needle_grading(c, sharp, rho_mm, groups["cavity"], info.grading, edges);
     size_fields.push_back(size_field);
     size_field = gmsh::model::mesh::field::add("Min");
     gmsh::model::mesh::field::setNumbers(size_field, "FieldsList",

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <limits>
 #include <map>
 
@@ -10,6 +11,8 @@
 
 #include "case/case.hpp"
 #include "geometry/needle_tip.hpp"
+#include "mesh/cad_tip.hpp"
+#include "physics/contact/cad_needle.hpp"
 
 namespace needlefem::contact {
 
@@ -30,11 +33,15 @@ double centroid_weight(int nodes_per_face, int a) {
 // contact needle's edges is not meshed) at t = 0; a vertex off it by more than a thousandth of
 // the radius stops the run, naming the largest offset and where.
 void require_cavity_on_needle(const Case& input, const TetMesh& mesh, const PenaltyContact& contact,
-                              const BevelTip& tip, const NeedleMotion& motion) {
-  constexpr double kSharpEdge = 1e-12;  // m: the needle without its edge rounding
+                              const RigidObstacle& sharp) {
   constexpr double kMmPerM = 1e3;
-  const RigidNeedle sharp(tip, motion, kSharpEdge);
-  const double tolerance = 1e-3 * tip.radius;
+  double radius = 0.0;  // of the cavity: the needle's
+  for (std::size_t f = 0; f < contact.face_count(); ++f)
+    for (int a = 0; a < 3; ++a) {
+      const Point3& X = mesh.nodes[contact.face_nodes(f)[a]];
+      radius = std::max(radius, std::hypot(X[0], X[1]));
+    }
+  const double tolerance = 1e-3 * radius;
   double largest = 0.0;
   Point3 where{};
   for (std::size_t f = 0; f < contact.face_count(); ++f)
@@ -59,20 +66,46 @@ bool needle_contact_enabled(const Case& input) {
   return input.text("scene.kind") == "brain-tip" && input.text("contact.mode") == "frictional";
 }
 
-NeedleContact::NeedleContact(const Case& input, const TetMesh& mesh, double reference_modulus) : mesh_(mesh) {
-  const NeedleTip tip = needle_tip_from_case(input);
-  if (tip.kind != NeedleTip::Kind::Bevel)
-    throw input.error("contact.mode", "frictional contact needs a convex needle (needle.kind = \"bevel\"); the "
-                                      "compliant tip's neck is not convex: use contact.mode = \"tied\"");
+namespace {
+
+std::shared_ptr<const CadNeedleShape> cad_needle_shape(const Case& input, const CadTipTriangulation& cad,
+                                                       double edge_radius) {
+  try {
+    return std::make_shared<CadNeedleShape>(TriangleSoup{cad.vertices, cad.triangles}, edge_radius);
+  } catch (const std::invalid_argument& e) {
+    throw input.error("needle.cad_file", fmt::format("'{}': {}", input.path("needle.cad_file").string(), e.what()));
+  }
+}
+
+}  // namespace
+
+std::shared_ptr<const RigidNeedle> rigid_needle_from_case(const Case& input, std::shared_ptr<const RigidNeedle>* sharp) {
   constexpr double kMPerUm = 1e-6;
-  needle_ = std::make_shared<RigidNeedle>(tip.bevel, needle_motion_from_case(input),
-                                          input.real("needle.edge_radius_um") * kMPerUm);
+  constexpr double kSharpEdge = 1e-12;  // m: the bevel needle without its edge rounding
+  const NeedleTip tip = needle_tip_from_case(input);
+  const double edge_radius = input.real("needle.edge_radius_um") * kMPerUm;
+  const NeedleMotion motion = needle_motion_from_case(input);
+  if (tip.kind == NeedleTip::Kind::Cad) {
+    const CadTipTriangulation cad = triangulate_cad_tip(input);
+    if (sharp) *sharp = std::make_shared<RigidNeedle>(cad_needle_shape(input, cad, 0.0), motion);
+    return std::make_shared<RigidNeedle>(cad_needle_shape(input, cad, edge_radius), motion);
+  }
+  if (tip.kind != NeedleTip::Kind::Bevel)
+    throw input.error("contact.mode", "frictional contact needs a convex needle (needle.kind = \"bevel\" or \"cad\"); "
+                                      "the compliant tip's neck is not convex: use contact.mode = \"tied\"");
+  if (sharp) *sharp = std::make_shared<RigidNeedle>(tip.bevel, motion, kSharpEdge);
+  return std::make_shared<RigidNeedle>(tip.bevel, motion, edge_radius);
+}
+
+NeedleContact::NeedleContact(const Case& input, const TetMesh& mesh, double reference_modulus) : mesh_(mesh) {
+  const bool user_mesh = !input.path("scene.mesh_file").empty();
+  std::shared_ptr<const RigidNeedle> sharp;  // without the edge rounding (which is not meshed)
+  needle_ = rigid_needle_from_case(input, user_mesh ? &sharp : nullptr);
   ContactParameters parameters = contact_parameters_from_case(input, reference_modulus);
   parameters.reference_gap_offset = true;  // the cavity is meshed from the needle's shape
   smoothing_pressure_ = parameters.penalty_smoothing * reference_modulus;
   contact_ = std::make_shared<PenaltyContact>(mesh, kCavity, needle_, parameters);
-  if (!input.path("scene.mesh_file").empty())
-    require_cavity_on_needle(input, mesh, *contact_, tip.bevel, needle_->motion());
+  if (user_mesh) require_cavity_on_needle(input, mesh, *contact_, *sharp);
   std::map<int, std::pair<double, int>> penalty_sum;  // node -> (sum of face penalties, faces)
   for (std::size_t f = 0; f < contact_->face_count(); ++f)
     for (int a = 0; a < contact_->nodes_per_face(); ++a) {

@@ -40,6 +40,13 @@ class Case;
 
 namespace needlefem::contact {
 
+// The rigid needle of the case's [needle] and [motion]: the analytic bevel (needle_obstacle.hpp)
+// or a CAD tip (needle.kind = "cad", cad_needle.hpp). Throws CaseError for the compliant tip (not
+// convex) and for a CAD file that breaks a rule (mesh/cad_tip.hpp). `sharp` (optional): also
+// the same needle without its edge rounding, from the same triangulation.
+std::shared_ptr<const RigidNeedle> rigid_needle_from_case(const Case& input,
+                                                          std::shared_ptr<const RigidNeedle>* sharp = nullptr);
+
 // True for the brain-tip scene with contact.mode = "frictional".
 bool needle_contact_enabled(const Case& input);
 

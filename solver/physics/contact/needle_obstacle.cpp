@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <utility>
 
 
 namespace needlefem::contact {
@@ -195,7 +196,11 @@ ObstacleProjection RigidNeedle::project_on_edge(const Point3& xi) const {
   return from({d, n, normal_gradient(n, d, slide)});
 }
 
+RigidNeedle::RigidNeedle(std::shared_ptr<const NeedleShape> shape, const NeedleMotion& motion)
+    : shape_(std::move(shape)), motion_(motion), edge_radius_(shape_->edge_radius()) {}
+
 ObstacleProjection RigidNeedle::project_in_needle_frame(const Point3& xi) const {
+  if (shape_) return shape_->project(xi);
   if (tip_.rounded()) return project_rounded(xi);
   ObstacleProjection p = project_bevel(xi);  // against the core
   p.gap -= edge_radius_;

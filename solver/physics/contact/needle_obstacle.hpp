@@ -64,11 +64,21 @@ class Case;
 
 namespace needlefem::contact {
 
+// A needle shape other than the analytic bevel (a CAD tip: cad_needle.hpp), in the needle frame.
+class NeedleShape {
+ public:
+  virtual ~NeedleShape() = default;
+  virtual ObstacleProjection project(const Point3& xi) const = 0;  // g, n, G (no velocity)
+  virtual double edge_radius() const = 0;
+};
+
 class RigidNeedle final : public RigidObstacle {
  public:
   // edge_radius = ρ in metres before the cap ρ <= τ (case key needle.edge_radius_um). Throws
   // std::invalid_argument for tips that break their validity rules and for ρ <= 0.
   RigidNeedle(const BevelTip& tip, const NeedleMotion& motion, double edge_radius);
+  // Any other shape, moved by the same motion and pose.
+  RigidNeedle(std::shared_ptr<const NeedleShape> shape, const NeedleMotion& motion);
 
   ObstacleProjection project(const Point3& x, double t) const override;
   // Gap, normal and normal gradient in the needle frame (no velocity).
@@ -95,6 +105,7 @@ class RigidNeedle final : public RigidObstacle {
   ObstacleProjection project_on_edge(const Point3& xi) const;
 
   BevelTip tip_, core_;
+  std::shared_ptr<const NeedleShape> shape_;  // null: the bevel tip_
   NeedleMotion motion_;
   double edge_radius_ = 0.0;
 };

@@ -4,13 +4,13 @@
 #include "case/case.hpp"
 #include "geometry/needle_motion.hpp"
 #include "geometry/needle_tip.hpp"
-#include "physics/contact/needle_obstacle.hpp"
+#include "physics/contact/needle_contact.hpp"
 
 namespace needlefem::contact {
 
 namespace {
 
-constexpr double kMetresPerMm = 1e-3, kMetresPerUm = 1e-6;
+constexpr double kMetresPerMm = 1e-3;
 
 Point3 point_in_metres(const Case& input, const std::string& key) {
   const std::vector<double> v = input.reals(key);
@@ -30,13 +30,9 @@ std::shared_ptr<const RigidObstacle> scene_obstacle(const Case& input) {
     return std::make_shared<TranslatingSphere>(point_in_metres(input, "obstacle.point_mm"),
                                                input.real("obstacle.radius_mm") * kMetresPerMm, velocity);
   if (kind == "needle") {
-    const NeedleTip tip = needle_tip_from_case(input);
-    if (tip.kind != NeedleTip::Kind::Bevel)
-      throw input.error("obstacle.kind", "a needle obstacle must be convex (needle.kind = \"bevel\")");
-    return std::make_shared<OffsetObstacle>(
-        std::make_shared<RigidNeedle>(tip.bevel, needle_motion_from_case(input),
-                                      input.real("needle.edge_radius_um") * kMetresPerUm),
-        point_in_metres(input, "obstacle.point_mm"));
+    if (needle_tip_from_case(input).kind == NeedleTip::Kind::Compliant)
+      throw input.error("obstacle.kind", "a needle obstacle must be convex (needle.kind = \"bevel\" or \"cad\")");
+    return std::make_shared<OffsetObstacle>(rigid_needle_from_case(input), point_in_metres(input, "obstacle.point_mm"));
   }
   return nullptr;
 }
