@@ -111,7 +111,8 @@ std::vector<KeySpec> build_schema() {
       choice("obstacle.kind", "none", {"none", "plane", "sphere", "needle"},
              "Mesh scene: a rigid obstacle in frictional contact ([contact]) with obstacle.group: plane (solid "
              "behind the plane), sphere (solid ball), needle (the [needle] tip moved by [motion], axis along z, "
-             "tip towards +z, rear-face centre at obstacle.point_mm; physics/contact/scene_obstacle.hpp)"),
+             "tip towards +z, rear-face centre at obstacle.point_mm; physics/contact/scene_obstacle.hpp). A mesh "
+             "scene runs for loading.ramp_s + loading.hold_s: with a needle, set them to cover its motion"),
       text("obstacle.group", "", "Mesh scene: the surface group the obstacle touches"),
       reals("obstacle.point_mm", std::vector<double>{0, 0, 0}, 3, -1e4, 1e4,
             "Obstacle position at t = 0: a point of the plane, the sphere's centre, or the centre of the needle's "
