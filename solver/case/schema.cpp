@@ -167,7 +167,7 @@ std::vector<KeySpec> build_schema() {
            "presses on an edge) and the mesh is graded to resolve it (element size rho / 2^mesh.refinement_level "
            "on the edges). A ground needle's edge radius is a few to some tens of micrometres; the default is "
            "the smallest radius with which the penalty contact's Newton iteration ran the default tip on the "
-           "graded mesh (50 stalled in the first millisecond; cases/README.md)"),
+           "graded mesh (50 stalled in the first millisecond; docs/study.md, Edge radius and mesh grading)"),
       real("needle.shaft_mm", 0.1, 0.0, 100.0, "Straight shaft behind the bevel heel (or behind the neck)"),
       real("needle.head_length_mm", 3.5, 0.0, 100.0, "Compliant tip: magnetised head length L (cylinder + cone)"),
       real("needle.neck_length_mm", 1.0, 0.0, 100.0, "Compliant tip: neck (hinge) length l"),
@@ -301,8 +301,8 @@ std::vector<KeySpec> build_schema() {
       real("integration.krylov_aged_matrix_ratio", 2.0, 0.0, 1000.0,
            "integration.newton = krylov: a Newton matrix from an earlier step is refactored at the next step once a "
            "step it served needed more than this many times the GMRES iterations per Newton iteration of the step "
-           "that factored it (0: only when GMRES fails). Table I r = 0.83 mm, 20 deg, 0.45 mm: 580 GMRES "
-           "iterations, 2 factorisations and 32 s with 0; 281, 5 and 21.5 s with 2"),
+           "that factored it (0: only when GMRES fails). Sliding friction ages a matrix slowly, and one kept too "
+           "long costs more GMRES iterations than fresh factorisations would (docs/measurements.md, Speed)"),
       real("integration.krylov_tolerance", 0.5, 1e-6, 1.0,
            "integration.newton = krylov: GMRES stops when its residual is below this fraction of the Newton "
            "test's tolerance (IDA's epslin). With the default Newton coefficient (0.05) that is 0.025 of the "
@@ -313,15 +313,14 @@ std::vector<KeySpec> build_schema() {
              "integration.newton = krylov: the Newton matrix that preconditions GMRES. 'exact': the matrix itself "
              "(single-precision LU where friction makes it unsymmetric); 'symmetric': Cholesky of the symmetric "
              "part of the matrix without friction's pressure coupling, half the factor and solve cost, but on most "
-             "meshes that part is still indefinite at some setups and MUMPS LU takes over: default frictional case "
-             "31 s on its mesh, 64-83 s on five other meshes of the tip (mesh.seed 2-6) against 32-48 s with "
-             "'exact' (docs/speed.md)"),
+             "meshes that part is still indefinite at some setups and MUMPS LU takes over, which makes the "
+             "default frictional case slower than with 'exact' (docs/speed.md, Experiments)"),
       real("integration.newton_convergence_coefficient", 0.05, 0.0, 1.0,
            "Newton stops when its error estimate is below this fraction of the error-test tolerance "
            "(IDA's epcon; IDA's own default is 0.33). The strain rate, a safety quantity, comes from IDA's y', "
            "which carries the Newton error divided by the step: at 0.33 single output times of the frictional "
            "study read up to 2x high, at 0.05 within 1-3 % of tight runs; 0.01 stalled some study runs in their "
-           "first 0.2 ms (cases/README.md)"),
+           "first 0.2 ms (docs/study.md, How far to trust the strain rate)"),
       real("integration.newton_matrix_cj_change", 0.9, 0.0, 0.99,
            "Refactor the Newton matrix (or preconditioner) when IDA's cj = alpha/h changed by more than this "
            "fraction (IDA's own default 0.25 suits 'modified' on stiff ODEs; the tissue matrix barely depends on cj)",

@@ -30,7 +30,7 @@
 //               the discretisation delivers, and p = 2 widens the band. Below 0.5 the meshes
 //               are not in the asymptotic range: f_ext and GCI keep the observed order (raising
 //               it would narrow the band: at p = 0.11, the strain rate's order in
-//               cases/README.md's core-size study, r^p - 1 = 0.08 puts f_ext 13 |e21| from f1)
+//               docs/study.md's core-size study, r^p - 1 = 0.08 puts f_ext 13 |e21| from f1)
 //               and Fs becomes 3, Roache's factor for an order that has not been verified. The
 //               note says when either acted.
 //   incomplete  a value is missing (NaN): nothing is estimated.

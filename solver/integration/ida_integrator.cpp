@@ -41,9 +41,9 @@ Vec petsc_vector(N_Vector v) { return N_VGetVector_Petsc(v); }
 // - Aging: a step that served its Newton iterations from a stale matrix with more than
 //   IdaOptions::krylov_aged_matrix_ratio times the GMRES iterations per Newton iteration of the
 //   step that factored it (at least kFreshIterationsFloor) makes the next step refuse it, once.
-//   Sliding friction ages a matrix slowly: on Table I r = 0.83 mm, 20 deg, 0.45 mm the matrix of
-//   t = 0.7 ms served to the end, its steps climbing from 4-5 to 11-20 GMRES iterations per
-//   Newton iteration (580 in all, 2 factorisations), while a factorisation costs about 20.
+//   Sliding friction ages a matrix slowly: without this rule one early matrix can serve a whole
+//   Table I run while its steps need ever more GMRES iterations, which together cost more than
+//   a few fresh factorisations (docs/measurements.md, "Speed").
 class StaleMatrixPolicy {
  public:
   StaleMatrixPolicy() = default;
@@ -162,9 +162,9 @@ struct IdaCallbacks {
   // none. IDA's first setup (forced at its first step, at t0 + h0 and c_j = 1/h0) takes it over
   // when the system says it serves at that c_j (DaeSystem::newton_matrix_serves): the state has
   // moved by h0 y' only, GMRES corrects the difference, and if it cannot, Newton refreshes the
-  // matrix. Tied 0.4 mm brain tip: 13 -> 12 factorisations, 13.3 -> 12.7 s. Not with friction's
-  // slip-velocity terms, whose c_j part is h0/probe times stiffer in the probe's matrix (1000x here):
-  // measured on six meshes of the default case, two runs stopped at t = 4e-5 s, IDA_CONV_FAIL.
+  // matrix, which saves one factorisation. Not with friction's slip-velocity terms, whose c_j
+  // part is h0/probe times stiffer in the probe's matrix (1000x here): with them some runs of the
+  // default case stopped in their first steps with IDA_CONV_FAIL (docs/speed.md, "Experiments").
   double probe_matrix_cj = 0.0;
 };
 
@@ -353,9 +353,9 @@ IdaIntegrator::IdaIntegrator(DaeSystem& system, const IdaOptions& options, doubl
     ida_check(IDASetLinearSolver(m.ida, m.linear_solver, m.jacobian), "IDASetLinearSolver");
     ida_check(IDASetJacFn(m.ida, jacobian_callback), "IDASetJacFn");
     // Fixed steps (stability studies) keep IDA's own test. With the rate factor reset per solve,
-    // the stability map's frictional brain tip at fixed steps of 0.1, 0.2 and 0.5 ms ran into
-    // its 300 s limit (Newton's rate test failing at stick/slip changes, steps cut to a few µs
-    // that fixed-step mode does not grow back), where IDA's test completes them.
+    // the stability map's frictional brain tip at fixed steps did not complete (Newton's rate
+    // test failing at stick/slip changes, steps cut to a few µs that fixed-step mode does not
+    // grow back), where IDA's test completes them (docs/measurements.md, "Stability").
     if (!options.fixed_step) {
       m.newton = SUNNonlinSol_Newton(m.y_nv, m.context);
       if (!m.newton) throw std::runtime_error("creating IDA's Newton solver failed");
@@ -473,7 +473,7 @@ void IdaIntegrator::advance_to(double t_out, const std::function<void(double)>& 
     const double remaining = t_out - t_reached;
     // IDA takes a stop time within 100 units of round-off of t + h as reached (its stop test), so
     // a remaining interval that exceeds the next step by no more is one step, not two halves
-    // (tied brain-tip benchmark: 28 -> 21 steps, 58 -> 47 Newton iterations).
+    // (docs/speed.md, "Experiments").
     const double round_off = 100.0 * std::numeric_limits<double>::epsilon() * (std::abs(t_reached) + h_next);
     if (!m.options.fixed_step && h_next > 0.0 && remaining - h_next > round_off && remaining < 2.0 * h_next)
       stop = t_reached + 0.5 * remaining;

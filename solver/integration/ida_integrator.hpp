@@ -55,8 +55,8 @@ struct IdaOptions {
   // GMRES (krylov) stops when its residual is below this fraction of the Newton test's
   // tolerance (IDA's epslin, default 0.05). The preconditioner is a factorisation kept over many
   // steps, so each GMRES iteration (one residual evaluation and one triangular solve) buys less
-  // than a further Newton iteration: on the frictional brain-tip study 0.25 took 3x fewer GMRES
-  // iterations for the same maxima. IDA's Newton test sees only the updates, though, so a loose
+  // than a further Newton iteration, and a looser tolerance gives the same maxima for fewer
+  // GMRES iterations (docs/speed.md, "Experiments"). IDA's Newton test sees only the updates, though, so a loose
   // solve can stop Newton on a wrong iterate where the matrix is nearly singular (K/mu = 1e5:
   // a 4x wrong reaction with 0.25); hence 0.25 only in the study's case files (schema.cpp).
   double krylov_tolerance = 0.05;
@@ -64,8 +64,9 @@ struct IdaOptions {
   // step (the whole krylov_dimension with one factored in the current step). At the limit IDA's
   // Newton sees a failed linear solve and retries with a fresh matrix (a step cut only when the
   // matrix was fresh). While the needle moves, a matrix from the previous step can leave GMRES
-  // stagnating at the full basis: tied 0.4 mm benchmark 320 GMRES iterations with no limit,
-  // 122 with 5, same maxima. 0: no limit (the case files' default is 5, schema.cpp).
+  // stagnating at the full basis, where a fresh matrix would have converged at once (same
+  // maxima; docs/speed.md, "Experiments"). 0: no limit (runs take
+  // integration.krylov_stale_iterations, schema.cpp).
   int krylov_stale_iterations = 0;
   // A Newton matrix from an earlier step ages out (ida_integrator.cpp, StaleMatrixPolicy): the
   // next step refactors it once a step it served needed more than this many times the GMRES
@@ -140,8 +141,7 @@ class IdaIntegrator {
   // y' (displacements driven by a moving boundary or obstacle), which IDACalcIC leaves alone.
   // Why: with y'(t0) = 0 while the load already moves, IDA's first predictor misses by
   // h v, its error test forces h ~ atol / v and the step then needs doublings to reach the
-  // loading's time scale (measured on the default tip's level-0 mesh: 66 steps from zero rates,
-  // 51 from the probe's). Convergence: the largest weighted component of the update times
+  // loading's time scale (docs/speed.md, "Measurements formerly in code comments"). Convergence: the largest weighted component of the update times
   // probe_horizon below 1e-3. The largest, not IDA's RMS norm: one contact point whose state
   // changes inside the probe step is invisible in an RMS over millions of unknowns, and its rate
   // is then wrong (measured: 1.1e5 1/s at t = 0 at one point of the cavity, r = 0.32 mm tip on

@@ -506,9 +506,8 @@ std::pair<int, int> share_of(int begin, int end, int t, int threads) {
 
 // The solves' barriers spin whatever OMP_WAIT_POLICY says: their waits last microseconds, and
 // under OMP_WAIT_POLICY=passive an OpenMP barrier puts the waiting thread to sleep and wakes it
-// through the kernel. Measured on a 0.4 mm brain-tip LU factor (33.8 M entries), passive: a
-// solve took 16.1-16.3 ms with the top part on one thread, 13.2-14.3 ms shared with these
-// barriers, and no less than on one thread with OpenMP's.
+// through the kernel, which costs more than sharing the top part saves (docs/measurements.md,
+// "Speed").
 class SinglePrecisionFactor::SpinBarrier {
  public:
   explicit SpinBarrier(int threads) : threads_(threads) {}

@@ -18,13 +18,14 @@
 // supernode in a subtree only updates supernodes of its own subtree or above, so the threads
 // share nothing but the lists of the supernodes above, which each thread keeps for itself until
 // the subtrees are done. BLAS runs on one thread inside each: OpenBLAS's own threads spin
-// (sched_yield) after every call and took a third of the run's CPU time from the element loops. Solves split the same way: the forward substitution runs
+// (sched_yield) after every call and take CPU time from the element loops (docs/speed.md). Solves split the same way: the forward substitution runs
 // the subtrees concurrently, each thread gathering its updates of the rows above in its own
 // vector, then the top part; the back substitution runs the top part, then the subtrees. The top
 // part's large supernodes are shared: their diagonal blocks in panels of columns (each panel's
 // triangle on one thread, its product with the block's other rows split by rows), the rows below
-// split by rows (forward) or the block's columns (back). Its dense root separators hold 40 % of
-// the 0.4 mm brain-tip factor, which one thread streamed at half the memory bandwidth of two.
+// split by rows (forward) or the block's columns (back): the dense root separators hold a large
+// share of the brain-tip factor, and one thread streams it at a fraction of the memory bandwidth
+// two reach (docs/speed.md, first section).
 //
 // LU: the same supernodes and tree, each holding a panel of L (its diagonal block whole) and one
 // of Uᵀ (laid out like L's). Every update has two products, L_d Uᵀ_dᵀ for L's columns and

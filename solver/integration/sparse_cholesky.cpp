@@ -62,9 +62,8 @@ class MatrixValues {
 // the `block` unknowns of a node (its displacement components) share their couplings, so the
 // graph of nodes is a ninth of the unknowns' graph and orders in a fraction of the time; each
 // node's free unknowns stay together in the order (CHOLMOD's supernodes merge them anyway).
-// Measured on the 0.4 mm brain tip (59682 unknowns): ordering and symbolic factorisation 0.21 s,
-// 36.4 M factor entries, 5.27e10 flops, against 0.37 s, 36.8 M and 5.59e10 for CHOLMOD's own
-// choice (AMD, then METIS on the unknowns).
+// On the brain tip it orders faster than CHOLMOD's own choice (AMD, then METIS on the unknowns)
+// and gives a factor no larger (docs/speed.md, "Experiments").
 // Returns CHOLMOD's permutation of the free unknowns (numbered in order of their rows).
 std::vector<int> node_nested_dissection(const RowStructure& structure, const std::vector<PetscInt>& free_index,
                                         PetscInt block) {

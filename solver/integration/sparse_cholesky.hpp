@@ -11,10 +11,9 @@
 // normal contact penalty). Coulomb friction adds an unsymmetric part: S_ff is then the
 // preconditioner of IDA's GMRES rather than an exact inverse.
 //
-// Why not MUMPS LU on the whole matrix: on the 0.4 mm brain-tip Newton matrix (55,044 free
-// unknowns, 4.5 M entries, two BLAS threads, one process) CHOLMOD refactors in 1.06 s against
-// MUMPS LU's 1.69 s (MUMPS LDLᵀ 1.30 s) and solves in 23 ms against 45 ms: its factor holds
-// 36.8 M entries against LU's 83.4 M (MUMPS's PORD ordering; Debian's MUMPS has no METIS).
+// Why not MUMPS LU on the whole matrix: a Cholesky factor of the symmetric part holds less than
+// half the entries of MUMPS's LU (PORD ordering; Debian's MUMPS has no METIS), so it refactors and
+// solves faster (the brain-tip figures: docs/speed.md, "What is in place").
 //
 // The ordering and the symbolic factorisation are computed at the first factor() and reused
 // while the matrix keeps its number of entries (its pattern); a changed pattern starts afresh.

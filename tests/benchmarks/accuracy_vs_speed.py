@@ -11,10 +11,8 @@ default tolerances; the tolerance family shows what tighter ones do); the chart 
 largest of the error in log strain, von Mises and needle force: the max strain rate has its
 own panel because it is dominated by spikes of the rate at single output times (IDA's ydot
 after step failures: 99.5 1/s at 15 ms on the 1.0 mm mesh where the neighbouring outputs give
-3.7), which no method controls. The reference is the paper's 0.4 mm mesh (19 CPU-s for these
-0.02 s with the element pressures as unknowns and the case file's GMRES tolerance 0.5; 30 before
-them with 0.25; 38 with 0.05 and r/10 edge rounding; 227 CPU-s with the earlier
-velocity-regularised friction). The tolerance family also reports its error against the tightest tolerance that
+3.7), which no method controls. The reference is the paper's 0.4 mm mesh (its cost under each
+version's defaults: docs/measurements.md, "Accuracy versus speed"). The tolerance family also reports its error against the tightest tolerance that
 completed on its own mesh (the time-integration error alone).
 
 Method families (one varied setting each, the others at the defaults):

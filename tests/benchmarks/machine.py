@@ -1,6 +1,5 @@
-"""What a benchmark ran on: wall times are only comparable on the same CPU and BLAS kernels (the
-same build ran the tied brain-tip benchmark in 12.8 s on one 2-core machine and 16.8 s on another,
-24.9 s there before needlefem chose OpenBLAS's kernels itself: integration/blas_threads.hpp)."""
+"""What a benchmark ran on: wall times are only comparable on the same CPU and BLAS kernels
+(integration/blas_threads.hpp; the same build on two machines: docs/speed.md)."""
 import os
 import platform
 

@@ -180,8 +180,8 @@ static_assert(kMaxElementPoints == 4, "CondensationElement holds a lane per poin
 // its points side by side (unused lanes of a one-point TET4 stay zero, weight included): the
 // condensation is part of the preconditioner of IDA's GMRES (or of modified Newton's inexact
 // iteration), where single precision is enough, and it runs for every element at every GMRES
-// iteration: point by point in scalar code it took 9 % of the default frictional case's CPU
-// time. D⁰ is stored as its upper triangle: it is symmetric (the second derivative of W_iso in E).
+// iteration, so point-by-point scalar code would be a visible share of a run (docs/speed.md,
+// "Measurements formerly in code comments"). D⁰ is stored as its upper triangle: it is symmetric (the second derivative of W_iso in E).
 struct CondensationElement {
   std::array<PointLanes, 9> deformation_gradient{};
   std::array<PointLanes, kVoigt*(kVoigt + 1) / 2> elastic_tangent{};  // D⁰ by rows, upper triangle

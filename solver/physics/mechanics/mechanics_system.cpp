@@ -39,8 +39,8 @@ DaeStatus guarded(Body&& body) noexcept {
 // copies are then added to `out` in thread order, the entries shared among the threads. Elements
 // sharing a node never race, without a colouring of the mesh, and with the static schedule every
 // entry is the same sum in the same order for a given thread count. `copies` (of threads 1, 2,
-// ...) persist between calls: allocated afresh, each call's pages came zeroed from the kernel
-// (3 % of the default frictional case's samples in clear_page).
+// ...) persist between calls: allocated afresh, each call's pages would come zeroed from the
+// kernel, which showed in profiles (docs/speed.md, "Measurements formerly in code comments").
 template <class Body>
 void for_each_element_summed(std::size_t elements, double* out, std::size_t size,
                              std::vector<std::vector<double>>& copies, Body&& body) {
@@ -101,8 +101,8 @@ MechanicsSystem::MechanicsSystem(const TetMesh& mesh, const material::Material& 
   // the three columns of each neighbour block. Prescribed rows become identity rows without
   // changing it, so the symbolic factorisation is reused from one setup to the next, and
   // setups add element matrices straight into the CSR values from the OpenMP threads
-  // (MatSetValues is not thread-safe; inserting by one thread took 0.25 s per setup on the
-  // 0.4 mm brain tip, and inserting the zero pattern through it 0.25 s at construction).
+  // (MatSetValues is not thread-safe, and inserting through it by one thread was a measurable
+  // part of each setup: docs/speed.md, "Measurements formerly in code comments").
   std::vector<PetscInt> row_start(static_cast<std::size_t>(dofs_.dof_count) + 1, 0), columns;
   for (PetscInt block = 0; block < block_rows; ++block)
     for (int i = 0; i < 3; ++i)

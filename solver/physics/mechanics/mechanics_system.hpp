@@ -17,9 +17,8 @@
 // for longer. Why: with p condensed, a Newton matrix from an earlier step is wrong by about
 // K ε against the shear stiffness μ (ε a step's strain increment; K/μ = 10⁴ for brain), so
 // every step of the brain-tip runs needed a fresh factorisation; with p an unknown, a stale
-// a_e perturbs the u-p system by ε only. Measured on the 0.4 mm brain tip (docs/speed.md):
-// cavity tied, 11 -> 2 factorisations, 46 -> 30 Newton, 89 -> 25 GMRES, integration 14.4 -> 5.2 s;
-// frictional default case 10 -> 3 factorisations, 12 -> 0 Newton failures, 72.9 -> 28.8 s.
+// a_e perturbs the u-p system by ε only, so a factorisation serves many steps (the effect on
+// the brain-tip benchmarks: docs/speed.md, "Element pressures as unknowns").
 //
 // Newton matrix J = ∂F/∂y + c_j ∂F/∂y' in blocks (per quadrature point q, term i, weight w_q,
 // B_q and D⁰_q as in physics/elements/tet_element.hpp):
@@ -189,11 +188,9 @@ class MechanicsSystem final : public DaeSystem {
   // From the third setup without an accepted step in between (IDA's Newton failing with fresh
   // matrices, at stick/slip events with steps cut to 1e-10 s), a single-precision factor gives
   // way to MUMPS's double-precision LU until a step is accepted: at such steps c_j = 1/h puts
-  // entries of 1e10 beside the tissue's, beyond what single precision resolves. Measured: the
-  // r = 1.25 mm, 20°, 0.15 mm design stopped with IDA_CONV_FAIL twice (44 and 54 ms) with the
-  // single-precision LU throughout, and ran to the end with MUMPS's (172 s); with this rule it
-  // ran to the end without needing it (59 s, meshes differ from run to run), and the default
-  // case never triggers it.
+  // entries of 1e10 beside the tissue's, beyond what single precision resolves. The default case
+  // never triggers it; the study design that needed it: docs/speed.md, "Measurements formerly in
+  // code comments".
   static constexpr int kSinglePrecisionSetupsWithoutStep = 2;
   int setups_since_accepted_step_ = 0;
   // KspOptions::symmetric_preconditioner (Krylov Newton): setups assemble
