@@ -146,7 +146,10 @@ void run_force_trajectory(const CaseOptions& options) {
 void add_force_trajectory_command(CLI::App& app) {
   add_case_command(app, "force-trajectory",
                    "Paper 000's insertion force (Eq. 3.2: deformation energy of a brain-tip run, rupture, fracture 2 pi J_c r,\n"
-                   "optional shaft friction; [insertion_force] keys) as a replay trajectory OUT/CASE.h5 + OUT/CASE.json",
+                   "optional shaft friction; [insertion_force] keys) as a replay trajectory OUT/CASE.h5 + OUT/CASE.json.\n"
+                   "While the energy run's history.csv is missing it stops with the command that makes it; a deformation\n"
+                   "stage beyond insertion_force.extrapolation_warn_factor times the energy run's travel is warned about,\n"
+                   "beyond insertion_force.extrapolation_limit_factor times it refused",
                    "out/force_trajectory", run_force_trajectory);
 }
 

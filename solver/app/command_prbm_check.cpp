@@ -90,7 +90,9 @@ void run_prbm_check(const CaseOptions& options) {
 void add_prbm_check_command(CLI::App& app) {
   add_case_command(app, "prbm-check",
                    "Paper 000's pseudo-rigid-body hinge angle (Eq. 2.7) against a large-rotation 3-D FEM of the compliant tip\n"
-                   "([prbm_check] keys; E from steering.neck_youngs_modulus_gpa): table as JSON",
+                   "([prbm_check] keys; E from steering.neck_youngs_modulus_gpa), the tip meshed alone and clamped under follower\n"
+                   "and dead head loads: angle table, hinge stiffness, neck strain, and up to which angle the PRBM stays\n"
+                   "within prbm_check.tolerance_percent, as JSON",
                    "out/prbm_check", run_prbm_check);
 }
 

@@ -40,7 +40,16 @@ void run_command(const CaseOptions& options) {
 
 void add_run_command(CLI::App& app) {
   add_case_command(app, "run",
-                   "Solve a case's tissue mechanics with IDA: HDF5/XDMF fields, history.csv and summary.json.\n"
+                   "Solve a case's tissue mechanics with IDA to every output.interval_s. Writes into OUT:\n"
+                   "  result.h5 + result.xdmf  fields: displacement, velocity, Cauchy stress, von Mises, max principal\n"
+                   "                           stress and log strain, strain rate, pressure, their running maxima;\n"
+                   "                           brain-tip: contact_pressure, contact_slip on the cavity\n"
+                   "  history.csv              per output time: the maxima with their positions, reactions per surface,\n"
+                   "                           energies; brain-tip: force, moment and lateral force on the needle, contact area\n"
+                   "  summary.json             verdict (pass, or fail when any limit fails; also the last line printed),\n"
+                   "                           maxima, safety metrics with a verdict per limit, needle loads, software\n"
+                   "                           versions; status 'running' until the run ends\n"
+                   "A run holds OUT for its lifetime; a second run into it is refused.\n"
                    "Options after `--` go to PETSc and SUNDIALS unchanged. Ctrl-C or SIGTERM stops the run after the\n"
                    "step in progress, keeping the output times it has written (a second Ctrl-C stops it at once).",
                    "out/run", run_command);
