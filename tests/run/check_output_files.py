@@ -49,7 +49,7 @@ import time
 import h5py
 
 SKIP = 77  # ctest's SKIP_RETURN_CODE for this script
-PROGRESS = re.compile(r"^(mesh: meshing the |mesh: meshed in |run: +t = )")
+PROGRESS = re.compile(r"^(mesh: meshing the |mesh: meshed in |mesh: from the mesh cache: |run: +t = )")
 
 
 def error_lines(stderr):
