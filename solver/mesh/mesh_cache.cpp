@@ -181,6 +181,19 @@ class CacheTemporary {
   fs::path path_;
 };
 
+// Removes the temporaries that writers killed while meshing left in the directory: those older
+// than a day (a meshing takes minutes) are nobody's.
+void remove_stale_temporaries(const fs::path& directory) {
+  const auto limit = fs::file_time_type::clock::now() - std::chrono::hours(24);
+  std::error_code error;
+  for (auto it = fs::directory_iterator(directory, error); !error && it != fs::directory_iterator(); it.increment(error)) {
+    const std::string name = it->path().filename().string();
+    std::error_code ignored;
+    if (name.starts_with(".") && name.ends_with(".partial.msh") && it->last_write_time(ignored) < limit && !ignored)
+      fs::remove(it->path(), ignored);
+  }
+}
+
 // Meshes the scene into a temporary file in the cache directory and publishes it as `entry`:
 // "" when the entry exists afterwards (this run's or a concurrent run's: the first link wins),
 // else why the directory could not take it. Errors of the case and of gmsh propagate.
@@ -188,6 +201,7 @@ std::string mesh_and_publish(const Case& c, const fs::path& entry, std::FILE* pr
   std::error_code error;
   fs::create_directories(entry.parent_path(), error);
   if (error) return error.message();
+  remove_stale_temporaries(entry.parent_path());
   const CacheTemporary temporary(entry);
   // Whether the directory takes a file at all, before meshing.
   if (const int probe = ::open(temporary.path().c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644); probe < 0)

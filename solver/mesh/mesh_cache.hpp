@@ -16,7 +16,8 @@
 //
 // A miss meshes into a temporary file in the directory and publishes it with link(), which fails
 // when the name exists: the first writer wins, a concurrent one drops its own and reads the
-// winner's. Hit or miss, the run reads the published entry, so the first run and every later one
+// winner's (a temporary left by a writer that was killed is removed by a miss a day later). Hit
+// or miss, the run reads the published entry, so the first run and every later one
 // use the same bytes. A directory that cannot be written (read-only, full) does not fail the run:
 // it meshes into the output directory as without a cache and says so in one line. The user's mesh
 // or geometry (scene.mesh_file) and a case that exports the needle (needle.export_file, written
