@@ -9,7 +9,7 @@
 set -euo pipefail
 exe=${1:-$(cd "$(dirname "$0")/.." && pwd)/build/needlefem}
 [ -n "${OPENBLAS_CORETYPE:-}" ] && exit 0
-core=$(env -u OPENBLAS_CORETYPE "$exe" --version 2>&1 >/dev/null |
+core=$({ env -u OPENBLAS_CORETYPE "$exe" --version 2>&1 >/dev/null || true; } |
   sed -n 's/^needlefem: note: .*export OPENBLAS_CORETYPE=\([A-Za-z0-9_]*\).*/\1/p' | head -n 1)
 [ -n "$core" ] && echo "export OPENBLAS_CORETYPE=$core"
 exit 0
