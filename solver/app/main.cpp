@@ -50,7 +50,8 @@ int main(int argc, char** argv) {
   // BLAS on one thread unless OPENBLAS_NUM_THREADS says otherwise: OpenBLAS's idle threads spin
   // after every call and take the cores from the OpenMP element loops (integration/blas_threads.hpp).
   start_blas_on_one_thread();
-  if (const std::string note = openblas_coretype_note(); !note.empty()) fmt::print(stderr, "needlefem: note: {}\n", note);
+  if (const std::string note = openblas_coretype_note(); !note.empty())
+    fmt::print(stderr, "needlefem: note: {}\n", note);
   io::start_hdf5_without_termination();  // before MPI: io_errors.hpp
   // Everything after a bare "--" belongs to PETSc/SUNDIALS, untouched.
   std::vector<std::string> args(argv + 1, argv + argc);

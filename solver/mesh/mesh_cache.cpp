@@ -186,7 +186,8 @@ class CacheTemporary {
 void remove_stale_temporaries(const fs::path& directory) {
   const auto limit = fs::file_time_type::clock::now() - std::chrono::hours(24);
   std::error_code error;
-  for (auto it = fs::directory_iterator(directory, error); !error && it != fs::directory_iterator(); it.increment(error)) {
+  const fs::directory_iterator end;
+  for (auto it = fs::directory_iterator(directory, error); !error && it != end; it.increment(error)) {
     const std::string name = it->path().filename().string();
     std::error_code ignored;
     if (name.starts_with(".") && name.ends_with(".partial.msh") && it->last_write_time(ignored) < limit && !ignored)
@@ -254,7 +255,8 @@ SceneMeshInfo mesh_uncached(const Case& c, const fs::path& msh_file, std::FILE* 
 
 fs::path mesh_cache_directory() {
   if (const char* dir = std::getenv("NEEDLEFEM_MESH_CACHE"); dir && *dir) return dir;
-  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg == '/') return fs::path(xdg) / "needlefem" / "meshes";
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg == '/')
+    return fs::path(xdg) / "needlefem" / "meshes";
   if (const char* home = std::getenv("HOME"); home && *home) return fs::path(home) / ".cache" / "needlefem" / "meshes";
   return {};
 }
@@ -284,7 +286,8 @@ SceneMeshInfo build_scene_mesh(const Case& c, const fs::path& msh_file, std::FIL
   const std::string key = mesh_cache_key(c);
   const fs::path directory = mesh_cache_directory();
   if (directory.empty())
-    return mesh_uncached(c, msh_file, progress, "off", key, "no cache directory (neither NEEDLEFEM_MESH_CACHE nor HOME set)");
+    return mesh_uncached(c, msh_file, progress, "off", key,
+                         "no cache directory (neither NEEDLEFEM_MESH_CACHE nor HOME set)");
   const fs::path entry = directory / (key + ".msh");
   std::error_code error;
   const bool hit = fs::exists(entry, error);
@@ -316,7 +319,8 @@ SceneMeshInfo build_scene_mesh(const Case& c, const fs::path& msh_file, std::FIL
 
 nlohmann::json mesh_cache_json(const SceneMeshInfo& info) {
   // A user's .msh is read as it is: build_scene_mesh never saw it.
-  if (info.cache.empty()) return {{"source", "bypassed"}, {"key", ""}, {"file", ""}, {"note", "scene.mesh_file is given"}};
+  if (info.cache.empty())
+    return {{"source", "bypassed"}, {"key", ""}, {"file", ""}, {"note", "scene.mesh_file is given"}};
   nlohmann::json j = {{"source", info.cache}, {"key", info.cache_key}, {"file", info.cache_file}};
   if (!info.cache_note.empty()) j["note"] = info.cache_note;
   return j;

@@ -28,7 +28,8 @@ READ = re.compile(r'\bc\.(?:text|real|reals|integer|flag|texts|path|given|has|ma
 def main():
     source = Path(sys.argv[1])
     cache = (source / "solver/mesh/mesh_cache.cpp").read_text()
-    listed = set(re.findall(r'"([a-z_]+\.[a-z_0-9]+)"', cache[cache.index("kMeshKeys[]"):cache.index("};", cache.index("kMeshKeys[]"))]))
+    start = cache.index("kMeshKeys[]")
+    listed = set(re.findall(r'"([a-z_]+\.[a-z_0-9]+)"', cache[start:cache.index("};", start)]))
     read = set()
     for name in MESHER_FILES:
         read |= set(READ.findall((source / name).read_text()))
