@@ -147,6 +147,20 @@ std::optional<SceneMeshInfo> read_info_section(const fs::path& entry) {
   return info;
 }
 
+// Whether gmsh wrote the file to its end (its last line closes a section, "$End..."): gmsh does
+// not report a failed write, and a disk that fills up leaves the file cut short.
+bool ends_a_section(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary | std::ios::ate);
+  if (!in) return false;
+  const std::streamoff size = in.tellg();
+  const std::streamoff tail = std::min<std::streamoff>(size, 256);
+  std::string text(static_cast<std::size_t>(tail), '\0');
+  in.seekg(size - tail);
+  if (!in.read(text.data(), tail) || !text.ends_with("\n")) return false;
+  const std::size_t line = text.rfind('\n', text.size() - 2);
+  return line != std::string::npos && text.compare(line + 1, 4, "$End") == 0;
+}
+
 // write(2) all of `text` to fd; false on an error (ENOSPC, EIO, ...), errno set.
 bool write_all(int fd, const std::string& text) {
   for (std::size_t done = 0; done < text.size();) {
@@ -210,8 +224,9 @@ std::string mesh_and_publish(const Case& c, const fs::path& entry, std::FILE* pr
   else
     ::close(probe);
   const SceneMeshInfo info = generate_scene_mesh(c, temporary.path(), progress);
-  // gmsh does not report a failed write: the entry is published only if the info section that
-  // follows the mesh reached the disk.
+  // gmsh does not report a failed write: the entry is published only if the mesh ends where gmsh
+  // ends it and the info section that follows reached the disk.
+  if (!ends_a_section(temporary.path())) return "the mesh gmsh wrote there is cut short; disk full?";
   const int fd = ::open(temporary.path().c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
   if (fd < 0) return system_reason(errno);
   const bool written = write_all(fd, info_section(info)) && ::fsync(fd) == 0;

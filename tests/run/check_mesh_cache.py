@@ -9,6 +9,8 @@
   physics      only motion and material keys changed: the same key, a hit
   unwritable   a cache directory that cannot be written: the run completes, meshed into its
                output directory, with one line on stderr saying so
+  full         a cache directory on a disk too small for the mesh (a tmpfs; skipped where a user
+               namespace cannot mount one): the same
   concurrent   two `needlefem mesh` of one scene started together: both complete with the same
                bytes, one entry, no temporary file of theirs left (and a day-old one of a killed
                writer removed)
@@ -16,7 +18,7 @@
 Cases are the default brain tip on a coarse mesh with tied contact (seconds per run); where bit
 for bit is checked the mesh is second order, whose curved nodes differ from one meshing to the next.
 
-usage: check_mesh_cache.py --exe NEEDLEFEM --case CASE.toml --out DIR {repeat,seed,physics,unwritable,concurrent}
+usage: check_mesh_cache.py --exe NEEDLEFEM --case CASE.toml --out DIR {repeat,seed,physics,unwritable,full,concurrent}
 """
 import argparse
 import json
@@ -141,6 +143,29 @@ def unwritable(args):
           f"the summary says the cache was off; the mesh is in the output directory")
 
 
+def full(args):
+    """A cache on a tmpfs too small for the mesh (mounted in a user namespace: unshare -Urm; exit 77
+    where none can be mounted): gmsh's write is cut short, the run completes without the cache."""
+    if shutil.which("unshare") is None:
+        print("skipped: no unshare")
+        return 77
+    cache = fresh(args.out / "cache")
+    out = args.out / "run"
+    script = 'mount -t tmpfs -o size=64k tmpfs "$NEEDLEFEM_MESH_CACHE" || exit 77; exec "$@"'
+    environment = dict(os.environ, NEEDLEFEM_MESH_CACHE=str(cache))
+    result = subprocess.run(["unshare", "-Urm", "sh", "-c", script, "sh", args.exe, "run", str(args.case),
+                             "--out", str(out)] + SMALL + CURVED, env=environment, capture_output=True, text=True)
+    if result.returncode == 77:
+        print(f"skipped: a user namespace cannot mount a tmpfs here ({result.stderr.strip()})")
+        return 77
+    check(result.returncode == 0, f"the run exits 0 ({result.returncode}: {result.stderr.strip()[-400:]})")
+    summary = json.loads((out / "summary.json").read_text())
+    notes = [line for line in result.stderr.splitlines() if "mesh cache" in line]
+    check(len(notes) == 1 and "cannot be written" in notes[0], f"one line says the cache cannot be written ({notes})")
+    check(summary["status"] == "completed" and summary["mesh"]["cache"]["source"] == "off",
+          f"the run completes with the cache off ({summary['status']}, {summary['mesh']['cache']['source']})")
+
+
 def concurrent(args):
     cache = fresh(args.out / "cache")
     # What a writer killed while meshing leaves: removed once it is a day old, kept before.
@@ -166,10 +191,11 @@ def main():
     parser.add_argument("--exe", required=True)
     parser.add_argument("--case", type=Path, required=True)
     parser.add_argument("--out", type=Path, required=True)
-    parser.add_argument("check", choices=["repeat", "seed", "physics", "unwritable", "concurrent"])
+    parser.add_argument("check", choices=["repeat", "seed", "physics", "unwritable", "full", "concurrent"])
     args = parser.parse_args()
     fresh(args.out)
-    globals()[args.check](args)
+    if globals()[args.check](args) == 77:
+        return 77
     print(f"{len(failures)} failed")
     return 1 if failures else 0
 
