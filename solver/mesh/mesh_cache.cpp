@@ -266,16 +266,7 @@ SceneMeshInfo mesh_uncached(const Case& c, const fs::path& msh_file, std::FILE* 
   return info;
 }
 
-}  // namespace
-
-fs::path mesh_cache_directory() {
-  if (const char* dir = std::getenv("NEEDLEFEM_MESH_CACHE"); dir && *dir) return dir;
-  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg == '/')
-    return fs::path(xdg) / "needlefem" / "meshes";
-  if (const char* home = std::getenv("HOME"); home && *home) return fs::path(home) / ".cache" / "needlefem" / "meshes";
-  return {};
-}
-
+// The canonical text the key hashes, one "name = value" line each.
 std::string mesh_cache_key_text(const Case& c) {
   const nlohmann::json values = c.to_json();
   std::string text;
@@ -285,6 +276,16 @@ std::string mesh_cache_key_text(const Case& c) {
     text += fmt::format("needle.cad_file bytes = {}\n", file_hash(cad));
   text += fmt::format("gmsh = {}\nexecutable = {}\n", gmsh_version(), executable_hash());
   return text;
+}
+
+}  // namespace
+
+fs::path mesh_cache_directory() {
+  if (const char* dir = std::getenv("NEEDLEFEM_MESH_CACHE"); dir && *dir) return dir;
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg == '/')
+    return fs::path(xdg) / "needlefem" / "meshes";
+  if (const char* home = std::getenv("HOME"); home && *home) return fs::path(home) / ".cache" / "needlefem" / "meshes";
+  return {};
 }
 
 std::string mesh_cache_key(const Case& c) {

@@ -38,12 +38,9 @@ class Case;
 // The directory the cache uses in this environment (not created).
 std::filesystem::path mesh_cache_directory();
 
-// The key of the case's scene mesh: 16 hexadecimal digits.
+// The key of the case's scene mesh: 16 hexadecimal digits, the hash of a canonical text (the
+// mesher's case keys, gmsh's version and the executable's hash, one "name = value" line each).
 std::string mesh_cache_key(const Case& c);
-
-// The canonical text the key hashes (the mesher's case keys, gmsh's version and the
-// executable's hash), one "name = value" line each.
-std::string mesh_cache_key_text(const Case& c);
 
 // Where the scene mesh came from, for run summaries and mesh reports: {"source": "hit" | "miss" |
 // "off" | "bypassed", "key", "file", "note"} (SceneMeshInfo::cache).
