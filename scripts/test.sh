@@ -10,6 +10,12 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 # ctest runs one test per core; one BLAS thread and one OpenMP thread each keep the threaded
 # OpenBLAS and the element loops from oversubscribing them.
 export OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1} OMP_NUM_THREADS=${OMP_NUM_THREADS:-1}
+# OpenBLAS's kernels for this CPU where it does not know the model (scripts/blas_env.sh).
+eval "$("$root/scripts/blas_env.sh" "$PWD/needlefem")"
+# The tests' scene meshes go to a cache in the build tree, emptied here (not the user's
+# ~/.cache/needlefem: mesh/mesh_cache.hpp); tests that check the cache use their own.
+export NEEDLEFEM_MESH_CACHE=$PWD/mesh-cache
+rm -rf "$NEEDLEFEM_MESH_CACHE"
 status=0
 ctest --output-on-failure -j "$(nproc)" | tee ctest_output.log || status=$?
 if [ "$status" -ne 0 ]; then

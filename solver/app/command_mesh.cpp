@@ -2,7 +2,8 @@
 //   DIR/mesh.msh          gmsh mesh (millimetres)
 //   DIR/mesh.h5 + .xdmf   the mesh with per-tet region, scaled Jacobian, radius ratio, partition
 //   DIR/mesh_report.json  counts per region, Jacobian and quality ranges, tip and cavity volumes,
-//                         METIS partition effect, timings, and the resolved case.
+//                         METIS partition effect, timings, whether the mesh came from the mesh
+//                         cache (mesh/mesh_cache.hpp), and the resolved case.
 #include <algorithm>
 #include <chrono>
 
@@ -11,6 +12,7 @@
 
 #include "app/commands.hpp"
 #include "case/case.hpp"
+#include "mesh/mesh_cache.hpp"
 #include "model/partition.hpp"
 #include "model/scene_model.hpp"
 #include "output/result_file.hpp"
@@ -26,27 +28,13 @@ nlohmann::json volume_comparison(double value_m3, double reference_m3) {
   return {{"mm3", value_m3 * kMm3PerM3}, {"relative_difference", (value_m3 - reference_m3) / reference_m3}};
 }
 
-nlohmann::json to_json(const ElementSizeStats& s) {
-  return {{"tets", s.tets}, {"min", s.min}, {"median", s.median}, {"max", s.max}};
-}
-
-// The sizes aimed at near the needle (scene_mesher.cpp) and those measured on the mesh.
-nlohmann::json to_json(const NeedleGrading& g) {
-  return {{"refinement_level", g.refinement_level},
-          {"edge_radius_mm", g.edge_radius_mm},
-          {"target_mm", {{"edge", g.edge_target_mm}, {"surface", g.surface_target_mm}, {"core", g.core_mm}}},
-          {"grading_distance_mm", g.grading_distance_mm},
-          {"edge_curves", g.edge_curves},
-          {"needle_edge_element_mm", to_json(g.edge_elements)},
-          {"cavity_element_mm", to_json(g.cavity_elements)}};
-}
-
 nlohmann::json mesh_report(const Case& c, const SceneModel& scene, const Partition& partition, double total_s) {
   nlohmann::json report;
   report["case_file"] = c.origin();
   report["case"] = c.to_json();
   report["msh_file"] = scene.msh_file.string();
   report["user_mesh"] = scene.user_mesh;
+  report["mesh_cache"] = mesh_cache_json(scene.info);
   const TetMesh& mesh = scene.mesh;
   report["element"] = mesh.nodes_per_tet == 10 ? "TET10" : "TET4";
   report["nodes"] = mesh.nodes.size();

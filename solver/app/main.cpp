@@ -6,12 +6,9 @@
 #include <exception>
 #include <memory>
 #include <string>
-#include <string_view>
 #include <vector>
 
 #include <fmt/core.h>
-#include <sys/personality.h>
-#include <unistd.h>
 
 #include "app/commands.hpp"
 #include "integration/blas_threads.hpp"
@@ -46,43 +43,15 @@ void add_case_command(CLI::App& app, const std::string& name, const std::string&
   command->callback([options, run] { run(*options); });
 }
 
-// gmsh's high-order optimiser works in the order of memory addresses, so with the address space
-// randomised (ASLR) the nodes it moves differ in their last digits from one process to the next
-// (up to 6e-6 mm on ~1200 nodes of the 0.4 mm brain tip), and frictional contact turns that into
-// other step sequences (the default case took 27-37 s) and maxima in the 4th digit. Without
-// randomisation, and with gmsh on a thread of its own (mesh/gmsh_session.hpp), a case run twice
-// repeats bit for bit. `replay`, which talks to devices over the network, keeps it; where the
-// kernel refuses (a seccomp profile), runs go on randomised. True when the process must restart.
-bool stop_address_randomisation(int argc, char** argv) {
-  if (argc > 1 && std::string_view(argv[1]) == "replay") return false;
-  const int current = personality(0xffffffff);
-  if (current == -1 || (current & ADDR_NO_RANDOMIZE)) return false;
-  return personality(static_cast<unsigned long>(current) | ADDR_NO_RANDOMIZE) != -1;
-}
-
 }  // namespace needlefem::app
 
 int main(int argc, char** argv) {
   using namespace needlefem;
-  // OpenBLAS reads OPENBLAS_NUM_THREADS once, when it loads. Its idle threads spin after every
-  // call, even a vector operation of PETSc's, and take the cores from the threads with work. The
-  // element loops and the Cholesky factor thread with OpenMP themselves, so BLAS runs on one
-  // thread (where a double-precision factorisation's BLAS-3 calls are the work, it asks for more:
-  // blas_threads.hpp). Measured on 2 cores: tied brain-tip benchmark 22.1 s with two OpenBLAS
-  // threads against 20.5 s with one; the default frictional case, whose MUMPS LU factorisations
-  // lose BLAS's threads, 60.3 against 56.1 s. OpenMP keeps libgomp's default wait (spin about
-  // 3 ms, then sleep): a GMRES iteration enters some 20 parallel regions (threaded vector
-  // operations, element loops, triangular solves), and with OMP_WAIT_POLICY=passive, which
-  // this once set when OpenBLAS's threads also spun, each woke its sleeping thread through the
-  // kernel: Table I r = 0.83 mm, 10 deg, 0.15 mm 25.0-28.0 s of integration passive against
-  // 23.0-24.3 s in alternating runs (the same 497 Newton and GMRES iterations). OpenBLAS's kernels for a CPU it
-  // does not know are SSE3 ones (blas_threads.hpp). Unless the user chose them, start again
-  // with these settings.
-  bool restart = app::stop_address_randomisation(argc, argv);
-  const char* blas_core = openblas_core_for_unrecognised_cpu();
-  for (const auto& [variable, value] : {std::pair{"OPENBLAS_NUM_THREADS", "1"}, std::pair{"OPENBLAS_CORETYPE", blas_core}})
-    if (value && !std::getenv(variable)) restart = setenv(variable, value, 1) == 0 || restart;
-  if (restart) execv("/proc/self/exe", argv);  // returns only on failure: then run on with the defaults
+  // BLAS on one thread unless OPENBLAS_NUM_THREADS says otherwise: OpenBLAS's idle threads spin
+  // after every call and take the cores from the OpenMP element loops (integration/blas_threads.hpp).
+  start_blas_on_one_thread();
+  if (const std::string note = openblas_coretype_note(); !note.empty())
+    fmt::print(stderr, "needlefem: note: {}\n", note);
   io::start_hdf5_without_termination();  // before MPI: io_errors.hpp
   // Everything after a bare "--" belongs to PETSc/SUNDIALS, untouched.
   std::vector<std::string> args(argv + 1, argv + argc);

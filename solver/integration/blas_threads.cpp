@@ -2,7 +2,10 @@
 
 #include <dlfcn.h>
 
+#include <cstdlib>
 #include <string_view>
+
+#include <fmt/core.h>
 
 namespace needlefem {
 
@@ -38,6 +41,19 @@ const char* openblas_core_for_unrecognised_cpu() {
   if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) return "Haswell";
   if (__builtin_cpu_supports("avx")) return "Sandybridge";
   return nullptr;
+}
+
+std::string openblas_coretype_note() {
+  const char* core = openblas_core_for_unrecognised_cpu();
+  if (!core || std::getenv("OPENBLAS_CORETYPE")) return "";
+  return fmt::format("OpenBLAS did not recognise this CPU and runs its generic {} kernels; for its faster ones "
+                     "export OPENBLAS_CORETYPE={} before starting needlefem (scripts/blas_env.sh; docs/speed.md)",
+                     openblas_kernel(), core);
+}
+
+void start_blas_on_one_thread() {
+  const OpenBlasThreadCalls& calls = openblas();
+  if (calls.set && !std::getenv("OPENBLAS_NUM_THREADS")) calls.set(1);
 }
 
 BlasThreads::BlasThreads(int threads) {

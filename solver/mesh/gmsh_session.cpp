@@ -13,8 +13,8 @@ GmshSession::GmshSession(const std::string& model_name) : solver_threads_(omp_ge
   gmsh::initialize(0, nullptr, /*readConfigFiles=*/false);
   gmsh::option::setNumber("General.Terminal", 0);
   gmsh::option::setNumber("General.Verbosity", 1);
-  // One thread and a fixed seed: the same case gives the same mesh, node for node (with
-  // on_fresh_thread: see there).
+  // One thread and a fixed seed: the same case gives the same mesh up to the last digits of the
+  // curved nodes (on_fresh_thread and mesh/mesh_cache.hpp: why and what makes runs repeat).
   gmsh::option::setNumber("General.NumThreads", 1);
   gmsh::model::add(model_name);
 }

@@ -18,13 +18,12 @@ class GmshSession {
   static void guarded(const std::function<void()>& body);
 
   // Runs `body` (which opens its session) on a fresh thread and rethrows what it throws. Why:
-  // gmsh's high-order optimiser works in the order of its elements' memory addresses, so where
-  // the allocator puts them decides the last digits of the curved nodes (up to 6e-6 mm on ~1200
-  // nodes of the default brain tip, which frictional runs turn into other step sequences). A new thread allocates from a fresh malloc arena, laid
-  // out by the meshing alone and not by what the process allocated before (paths, options); with
-  // the address space not randomised (app/main.cpp) the same input then gives the same mesh bit
-  // for bit, whatever the output or case path, the environment, or the command; not whatever
-  // the build or the executable's path (gmsh keeps that path, whose length shifts the layout).
+  // gmsh's high-order optimiser works in the order of its elements' memory addresses. A new thread
+  // allocates from a fresh malloc arena, laid out by the meshing alone and not by what the process
+  // allocated before (paths, options), so the objects in it keep their relative order from run
+  // to run; large blocks mapped on their own land where address-space randomisation puts them, so
+  // this alone does not make a meshing repeat bit for bit. The scene mesh does not rely on it: it
+  // is meshed once and read from the mesh cache (mesh/mesh_cache.hpp).
   static void on_fresh_thread(const std::function<void()>& body);
 
  private:

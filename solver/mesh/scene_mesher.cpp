@@ -610,29 +610,23 @@ SceneMeshInfo mesh_user_geometry(const Case& c, const std::filesystem::path& msh
 
 }  // namespace
 
-SceneMeshInfo build_scene_mesh(const Case& c, const std::filesystem::path& msh_file, std::FILE* progress) {
-  SceneMeshInfo info;
-  GmshSession::on_fresh_thread([&] {
-    require_valid_scene(c);
-    if (progress) {
-      fmt::print(progress, "mesh: meshing the {} scene with gmsh (mesh.refinement_level {})\n", c.text("scene.kind"),
-                 c.integer("mesh.refinement_level"));
-      std::fflush(progress);
-    }
-    const auto start = std::chrono::steady_clock::now();
-    GmshSession session("needlefem");
-    GmshSession::guarded([&] {
-      const std::string kind = c.text("scene.kind");
-      info = kind == "block" ? mesh_block(c, msh_file)
-             : kind == "mesh" ? mesh_user_geometry(c, msh_file)
-                              : mesh_brain_tip(c, msh_file);
-    });
-    info.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  });
+SceneMeshInfo generate_scene_mesh(const Case& c, const std::filesystem::path& msh_file, std::FILE* progress) {
+  require_valid_scene(c);
   if (progress) {
-    fmt::print(progress, "mesh: meshed in {:.1f} s: {}\n", info.seconds, msh_file.string());
+    fmt::print(progress, "mesh: meshing the {} scene with gmsh (mesh.refinement_level {})\n", c.text("scene.kind"),
+               c.integer("mesh.refinement_level"));
     std::fflush(progress);
   }
+  const auto start = std::chrono::steady_clock::now();
+  SceneMeshInfo info;
+  GmshSession session("needlefem");
+  GmshSession::guarded([&] {
+    const std::string kind = c.text("scene.kind");
+    info = kind == "block" ? mesh_block(c, msh_file)
+           : kind == "mesh" ? mesh_user_geometry(c, msh_file)
+                            : mesh_brain_tip(c, msh_file);
+  });
+  info.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return info;
 }
 

@@ -50,12 +50,26 @@ struct SceneMeshInfo {
   double seconds = 0;
   std::string high_order_optimisation;  // which gmsh optimisation passes ran, and misses
   NeedleGrading grading;                // brain-tip scene only (block: refinement level only)
+  // Where the mesh came from (mesh/mesh_cache.hpp): "hit" (read from the cache), "miss" (meshed
+  // and published by this run, then read from the cache), "off" (the cache could not be used:
+  // meshed into msh_file directly, `cache_note` says why) or "bypassed" (scene.mesh_file,
+  // needle.export_file).
+  std::string cache;
+  std::string cache_key;    // empty when bypassed
+  std::string cache_file;   // the entry read; empty when off or bypassed
+  std::string cache_note;   // why the cache was off or bypassed
 };
 
-// Throws CaseError for impossible geometry (naming the violated rule) and std::runtime_error
-// when gmsh fails. On `progress` (nullptr: none), a line when gmsh starts and one when it has
-// written the mesh: fine levels mesh for long with nothing else to show.
+// The cache entry point (mesh/mesh_cache.cpp): writes the case's scene mesh to msh_file, from
+// the mesh cache when it holds the scene, else meshed with generate_scene_mesh and published
+// there first. Throws CaseError for impossible geometry (naming the violated rule) and
+// std::runtime_error when gmsh fails. On `progress` (nullptr: none), a line when gmsh starts and
+// one when the mesh is written: fine levels mesh for long with nothing else to show.
 SceneMeshInfo build_scene_mesh(const Case& c, const std::filesystem::path& msh_file, std::FILE* progress);
+
+// Meshes the case's scene with gmsh and writes it to msh_file (the mesher itself, without the
+// cache); on `progress` the line when gmsh starts.
+SceneMeshInfo generate_scene_mesh(const Case& c, const std::filesystem::path& msh_file, std::FILE* progress);
 
 // Building blocks for other meshers of the needle alone (prbm_check/), inside a GmshSession:
 // adds paper 000's compliant tip (millimetres, axis +z, rear face z = 0) to the current model as

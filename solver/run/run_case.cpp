@@ -23,6 +23,7 @@
 #include "integration/case_options.hpp"
 #include "integration/ida_integrator.hpp"
 #include "integration/petsc_session.hpp"
+#include "mesh/mesh_cache.hpp"
 #include "interrupt/interrupt_guard.hpp"
 #include "io_errors/io_errors.hpp"
 #include "model/scene_model.hpp"
@@ -224,7 +225,8 @@ nlohmann::json summary_json(const Case& c, const material::Material* material, c
                  {"element", scene->mesh.nodes_per_tet == 10 ? "TET10" : "TET4"},
                  {"msh_file", scene->msh_file.string()},
                  {"refinement_level", c.integer("mesh.refinement_level")},
-                 {"needle_edge_element_mm", scene->info.grading.edge_elements.median}};
+                 {"needle_edge_element_mm", scene->info.grading.edge_elements.median},
+                 {"cache", mesh_cache_json(scene->info)}};
   if (const nlohmann::json resolution = mesh_resolution_json(c); !resolution.is_null())
     s["mesh_resolution"] = resolution;
   s["files"] = {{"result", "result.h5"}, {"xdmf", "result.xdmf"}, {"history", "history.csv"}};

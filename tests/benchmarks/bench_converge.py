@@ -16,7 +16,7 @@ import subprocess
 import time
 from pathlib import Path
 
-from machine import describe_machine
+from machine import describe_machine, use_blas_environment
 
 ROOT = Path(__file__).resolve().parents[2]
 TARGET_S = 180.0
@@ -31,6 +31,7 @@ parser.add_argument("--case", type=Path, default=ROOT / "cases" / "table1" / "r0
 parser.add_argument("--jobs", type=int, default=1, help="levels at a time (each run threads over the cores)")
 parser.add_argument("--out", type=Path, default=ROOT / "out" / "bench_converge")
 args = parser.parse_args()
+use_blas_environment(args.exe)
 
 if args.out.exists():
     shutil.rmtree(args.out)

@@ -24,7 +24,7 @@ import subprocess
 import time
 from pathlib import Path
 
-from machine import describe_machine
+from machine import describe_machine, use_blas_environment
 
 root = Path(__file__).resolve().parents[2]
 parser = argparse.ArgumentParser()
@@ -35,6 +35,7 @@ parser.add_argument("--newton", nargs="+", choices=["krylov", "modified"], defau
 parser.add_argument("--out", type=Path, default=root / "out" / "bench_mechanics")
 parser.add_argument("--set", action="append", default=[], help="extra case overrides KEY=VALUE")
 args = parser.parse_args()
+use_blas_environment(args.exe)
 
 DENSITY = 1040.0           # kg/m^3, brain
 OMEGA = math.pi            # rad/s, needle rotation speed (180 deg/s)

@@ -18,6 +18,8 @@ import subprocess
 import time
 from pathlib import Path
 
+from machine import use_blas_environment
+
 ROOT = Path(__file__).resolve().parents[2]
 DEFAULT_EXE = ROOT / "build" / "needlefem"
 
@@ -30,7 +32,9 @@ def study_arguments(doc, out_name, timeout_s):
     parser.add_argument("--case", type=Path, default=ROOT / "cases" / "table1" / "r0.50_a20_f0.25.toml")
     parser.add_argument("--out", type=Path, default=ROOT / "out" / out_name)
     parser.add_argument("--timeout", type=float, default=timeout_s, help="seconds after which a run is killed")
-    return parser.parse_args()
+    args = parser.parse_args()
+    use_blas_environment(args.exe)
+    return args
 
 
 def set_args(overrides):

@@ -1,7 +1,21 @@
 """What a benchmark ran on: wall times are only comparable on the same CPU and BLAS kernels
-(integration/blas_threads.hpp; the same build on two machines: docs/speed.md)."""
+(docs/speed.md, Machines); and the BLAS environment every benchmark starts needlefem with."""
 import os
 import platform
+import subprocess
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def use_blas_environment(exe):
+    """Exports, for every needlefem this process starts, the OpenBLAS kernels this CPU should run
+    where OpenBLAS does not know its model (scripts/blas_env.sh, which asks `exe`)."""
+    exports = subprocess.run([str(ROOT / "scripts" / "blas_env.sh"), str(exe)], capture_output=True, text=True,
+                             check=True).stdout
+    for line in exports.splitlines():
+        name, value = line.removeprefix("export ").split("=", 1)
+        os.environ[name] = value
 
 
 def describe_machine():

@@ -49,11 +49,11 @@ import time
 import h5py
 
 SKIP = 77  # ctest's SKIP_RETURN_CODE for this script
-PROGRESS = re.compile(r"^(mesh: meshing the |mesh: meshed in |run: +t = )")
+PROGRESS = re.compile(r"^(mesh: meshing the |mesh: meshed in |mesh: from the mesh cache: |run: +t = |needlefem: note: )")
 
 
 def error_lines(stderr):
-    """stderr without the progress lines of meshing and of each output time."""
+    """stderr without the progress lines of meshing and of each output time, and notes."""
     return [line for line in stderr.splitlines() if not PROGRESS.match(line)]
 
 

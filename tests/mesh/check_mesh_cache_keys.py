@@ -1,0 +1,47 @@
+#!/usr/bin/python3
+"""Every case key the scene mesher reads is part of the mesh cache's key (kMeshKeys in
+solver/mesh/mesh_cache.cpp), or is one the cache handles otherwise: a key missing there would let
+a changed value find the mesh of the old one.
+
+Reads the sources: the keys read as c.text("..."), c.real("..."), ... in the mesher's files.
+
+usage: check_mesh_cache_keys.py SOURCE_DIR
+"""
+import re
+import sys
+from pathlib import Path
+
+# The files whose case reads decide the scene mesh (scene_mesher.cpp, the CAD tip it imports, the
+# needle tip and scene rules it checks).
+MESHER_FILES = ["solver/mesh/scene_mesher.cpp", "solver/mesh/cad_tip.cpp", "solver/geometry/needle_tip.cpp"]
+# Keys those files read that the key leaves out, and why.
+HANDLED_OTHERWISE = {
+    "scene.mesh_file": "bypasses the cache",
+    "needle.export_file": "bypasses the cache (written while meshing)",
+    "needle.cad_file": "keyed by the file's bytes",
+    "needle.cad_facet_um": "the contact needle's triangulation (cad_tip.cpp), not the scene mesh",
+    "needle.cad_facet_deg": "the contact needle's triangulation (cad_tip.cpp), not the scene mesh",
+}
+READ = re.compile(r'\bc\.(?:text|real|reals|integer|flag|texts|path|given|has|maybe_real)\("([a-z_0-9.]+)"\)')
+
+
+def main():
+    source = Path(sys.argv[1])
+    cache = (source / "solver/mesh/mesh_cache.cpp").read_text()
+    start = cache.index("kMeshKeys[]")
+    listed = set(re.findall(r'"([a-z_]+\.[a-z_0-9]+)"', cache[start:cache.index("};", start)]))
+    read = set()
+    for name in MESHER_FILES:
+        read |= set(READ.findall((source / name).read_text()))
+    missing = sorted(read - listed - set(HANDLED_OTHERWISE))
+    unread = sorted(listed - read)
+    print(f"{len(read)} keys read by the mesher, {len(listed)} in the cache key")
+    for key in missing:
+        print(f"FAIL: the mesher reads '{key}', which the mesh cache's key leaves out")
+    for key in unread:
+        print(f"FAIL: the mesh cache's key holds '{key}', which the mesher does not read")
+    return 1 if missing or unread else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
