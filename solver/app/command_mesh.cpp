@@ -17,6 +17,7 @@
 #include "model/scene_model.hpp"
 #include "output/result_file.hpp"
 #include "output/xdmf_text.hpp"
+#include "run/run_case.hpp"
 
 namespace needlefem::app {
 
@@ -41,6 +42,7 @@ nlohmann::json mesh_report(const Case& c, const SceneModel& scene, const Partiti
   report["tets"] = mesh.tet_count();
   for (const auto& [name, q] : scene.quality.regions) report["regions"][name] = to_json(q);
   report["inverted_tets"] = scene.quality.inverted();
+  report["cavity_rounding"] = to_json(scene.cavity_rounding);
   for (const auto& [name, faces] : mesh.surface_faces)
     report["surfaces"][name] = faces.size() / static_cast<std::size_t>(mesh.nodes_per_face());
   std::vector<char> in_tissue(mesh.nodes.size(), 0);
@@ -56,8 +58,10 @@ nlohmann::json mesh_report(const Case& c, const SceneModel& scene, const Partiti
     report["needle"] = {{"description", scene.info.needle_description},
                         {"analytic_volume_mm3", analytic * kMm3PerM3},
                         {"cad_volume", volume_comparison(scene.info.needle_cad_volume_m3, analytic)},
+                        // what the mesher carved, before the run rounds the cavity (cavity_rounding)
                         {"cavity_volume_removed_from_mesh",
-                         volume_comparison(scene.info.domain_volume_m3 - tissue_volume, analytic)}};
+                         volume_comparison(scene.info.domain_volume_m3 - tissue_volume +
+                                               scene.cavity_rounding.tissue_volume_gained_m3, analytic)}};
     if (scene.quality.regions.count("needle"))
       report["needle"]["needle_mesh_volume"] = volume_comparison(scene.quality.regions.at("needle").volume_m3, analytic);
   }
@@ -81,7 +85,7 @@ void run_mesh(const CaseOptions& options) {
   const Case c = Case::load(options.case_file, options.overrides);
   const std::filesystem::path out(options.out_dir);
   std::filesystem::create_directories(out);
-  const SceneModel scene = load_scene_model(c, out, stderr);
+  const SceneModel scene = run::load_run_scene(c, out, stderr);
   // The configured part count, or 2 to show what METIS buys when the mesh runs serially.
   const Partition partition = partition_tets(scene.mesh, std::max<int>(2, static_cast<int>(c.integer("mesh.partitions"))));
 

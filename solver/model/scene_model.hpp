@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "mesh/scene_mesher.hpp"
+#include "model/cavity_rounding.hpp"
 #include "model/mesh_quality.hpp"
 #include "model/tet_mesh.hpp"
 
@@ -19,6 +20,7 @@ struct SceneModel {
   MeshQuality quality;
   std::filesystem::path msh_file;
   bool user_mesh = false;
+  CavityRounding cavity_rounding;  // what moved the cavity onto the needle (run/run_case.hpp)
 };
 
 // Meshes the scene into out_dir/mesh.msh (or reads scene.mesh_file; a .geo of the mesh scene is

@@ -24,6 +24,9 @@ struct TetMesh {
   // Boundary faces per physical surface name ("entry", "fixed", "cavity", "x_min", ...),
   // nodes_per_face() node indices per face, oriented with the outward normal of the region.
   std::map<std::string, std::vector<int>> surface_faces;
+  // (tissue node, needle node) pairs that were one node before the cavity was rounded
+  // (cavity_rounding.hpp): the needle region keeps the sharp shape on copies of its cavity nodes.
+  std::vector<std::array<int, 2>> split_nodes;
 
   std::size_t tet_count() const { return tet_region.size(); }
   const int* tet(std::size_t e) const { return tet_nodes.data() + e * nodes_per_tet; }

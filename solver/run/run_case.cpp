@@ -30,6 +30,7 @@
 #include "output/result_file.hpp"
 #include "output/xdmf_text.hpp"
 #include "physics/fields/tissue_fields.hpp"
+#include "physics/contact/needle_contact.hpp"
 #include "physics/material/material.hpp"
 #include "physics/mechanics/dirichlet.hpp"
 #include "physics/mechanics/mechanics_system.hpp"
@@ -226,7 +227,8 @@ nlohmann::json summary_json(const Case& c, const material::Material* material, c
                  {"msh_file", scene->msh_file.string()},
                  {"refinement_level", c.integer("mesh.refinement_level")},
                  {"needle_edge_element_mm", scene->info.grading.edge_elements.median},
-                 {"cache", mesh_cache_json(scene->info)}};
+                 {"cache", mesh_cache_json(scene->info)},
+                 {"cavity_rounding", to_json(scene->cavity_rounding)}};
   if (const nlohmann::json resolution = mesh_resolution_json(c); !resolution.is_null())
     s["mesh_resolution"] = resolution;
   s["files"] = {{"result", "result.h5"}, {"xdmf", "result.xdmf"}, {"history", "history.csv"}};
@@ -256,6 +258,16 @@ void print_progress(std::FILE* stream, double t, double end, const IdaCounters& 
 
 }  // namespace
 
+SceneModel load_run_scene(const Case& c, const std::filesystem::path& out_dir, std::FILE* progress) {
+  SceneModel scene = load_scene_model(c, out_dir, progress);
+  scene.cavity_rounding = contact::round_cavity_to_needle(c, scene.mesh);
+  if (scene.cavity_rounding.moved_nodes == 0) return scene;
+  const double tissue_before = scene.quality.volume_of_regions_starting_with("tissue");
+  scene.quality = measure_quality(scene.mesh);
+  scene.cavity_rounding.tissue_volume_gained_m3 = scene.quality.volume_of_regions_starting_with("tissue") - tissue_before;
+  return scene;
+}
+
 nlohmann::json run_case(const Case& c, const RunOptions& options) {
   const auto start = Clock::now();
   const std::vector<double> times = output_times(c);  // its case errors before anything is written
@@ -282,7 +294,7 @@ nlohmann::json run_case(const Case& c, const RunOptions& options) {
                                   record.output_times_written));
   };
   try {
-    scene = std::make_unique<SceneModel>(load_scene_model(c, options.out_dir, options.progress));
+    scene = std::make_unique<SceneModel>(load_run_scene(c, options.out_dir, options.progress));
     require_valid_elements(*scene);
     record.mesh_s = seconds_since(start);
     stop_if_asked(times.front());

@@ -24,6 +24,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "model/scene_model.hpp"
+
 namespace needlefem {
 class Case;
 }
@@ -38,6 +40,11 @@ struct RunOptions {
   // summary.json says "interrupted", the completed output times stay, Interrupted is thrown.
   const std::atomic<bool>* stop = nullptr;
 };
+
+// The scene a run solves: load_scene_model's mesh with its cavity moved onto the rounded needle
+// in contact (contact::round_cavity_to_needle) and its quality measured again. `needlefem mesh`
+// shows the same mesh.
+SceneModel load_run_scene(const Case& c, const std::filesystem::path& out_dir, std::FILE* progress);
 
 // Returns the summary written to out_dir/summary.json.
 nlohmann::json run_case(const Case& c, const RunOptions& options);

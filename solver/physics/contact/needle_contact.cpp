@@ -32,24 +32,24 @@ double centroid_weight(int nodes_per_face, int a) {
 // nodes may sit on chords), so they are checked against the sharp needle (the rounding of the
 // contact needle's edges is not meshed) at t = 0; a vertex off it by more than a thousandth of
 // the radius stops the run, naming the largest offset and where.
-void require_cavity_on_needle(const Case& input, const TetMesh& mesh, const PenaltyContact& contact,
-                              const RigidObstacle& sharp) {
+void require_cavity_on_needle(const Case& input, const TetMesh& mesh, const RigidObstacle& sharp) {
   constexpr double kMmPerM = 1e3;
+  const auto cavity = mesh.surface_faces.find(kCavity);
+  if (cavity == mesh.surface_faces.end()) return;  // NeedleContact names the missing group
+  const auto face_nodes = static_cast<std::size_t>(mesh.nodes_per_face());
+  const auto for_each_vertex = [&](auto&& visit) {
+    for (std::size_t f = 0; f < cavity->second.size(); f += face_nodes)
+      for (std::size_t a = 0; a < 3; ++a) visit(mesh.nodes[cavity->second[f + a]]);
+  };
   double radius = 0.0;  // of the cavity: the needle's
-  for (std::size_t f = 0; f < contact.face_count(); ++f)
-    for (int a = 0; a < 3; ++a) {
-      const Point3& X = mesh.nodes[contact.face_nodes(f)[a]];
-      radius = std::max(radius, std::hypot(X[0], X[1]));
-    }
+  for_each_vertex([&](const Point3& X) { radius = std::max(radius, std::hypot(X[0], X[1])); });
   const double tolerance = 1e-3 * radius;
   double largest = 0.0;
   Point3 where{};
-  for (std::size_t f = 0; f < contact.face_count(); ++f)
-    for (int a = 0; a < 3; ++a) {
-      const Point3& X = mesh.nodes[contact.face_nodes(f)[a]];
-      const double gap = sharp.project(X, 0.0).gap;
-      if (std::abs(gap) > std::abs(largest)) largest = gap, where = X;
-    }
+  for_each_vertex([&](const Point3& X) {
+    const double gap = sharp.project(X, 0.0).gap;
+    if (std::abs(gap) > std::abs(largest)) largest = gap, where = X;
+  });
   if (std::abs(largest) > tolerance)
     throw input.error("scene.mesh_file",
                       fmt::format("the cavity does not fit the needle of the needle.* keys: its vertex at ({:.3g}, "
@@ -97,15 +97,24 @@ std::shared_ptr<const RigidNeedle> rigid_needle_from_case(const Case& input, std
   return std::make_shared<RigidNeedle>(tip.bevel, motion, edge_radius);
 }
 
-NeedleContact::NeedleContact(const Case& input, const TetMesh& mesh, double reference_modulus) : mesh_(mesh) {
+CavityRounding round_cavity_to_needle(const Case& input, TetMesh& mesh) {
+  if (!needle_contact_enabled(input)) return {};
   const bool user_mesh = !input.path("scene.mesh_file").empty();
-  std::shared_ptr<const RigidNeedle> sharp;  // without the edge rounding (which is not meshed)
-  needle_ = rigid_needle_from_case(input, user_mesh ? &sharp : nullptr);
+  std::shared_ptr<const RigidNeedle> sharp;  // without the edge rounding, as the cavity was meshed
+  const std::shared_ptr<const RigidNeedle> needle = rigid_needle_from_case(input, user_mesh ? &sharp : nullptr);
+  if (user_mesh) require_cavity_on_needle(input, mesh, *sharp);
+  return round_cavity(mesh, [&](const Point3& X) {
+    const ObstacleProjection p = needle->project(X, 0.0);
+    return Point3{X[0] - p.gap * p.normal[0], X[1] - p.gap * p.normal[1], X[2] - p.gap * p.normal[2]};
+  });
+}
+
+NeedleContact::NeedleContact(const Case& input, const TetMesh& mesh, double reference_modulus) : mesh_(mesh) {
+  needle_ = rigid_needle_from_case(input);
   ContactParameters parameters = contact_parameters_from_case(input, reference_modulus);
   parameters.reference_gap_offset = true;  // the cavity is meshed from the needle's shape
   smoothing_pressure_ = parameters.penalty_smoothing * reference_modulus;
   contact_ = std::make_shared<PenaltyContact>(mesh, kCavity, needle_, parameters);
-  if (user_mesh) require_cavity_on_needle(input, mesh, *contact_, *sharp);
   std::map<int, std::pair<double, int>> penalty_sum;  // node -> (sum of face penalties, faces)
   for (std::size_t f = 0; f < contact_->face_count(); ++f)
     for (int a = 0; a < contact_->nodes_per_face(); ++a) {

@@ -5,10 +5,11 @@
 // Coulomb friction μ, at the surface quadrature points of the "cavity" faces). Obstacle:
 // needle_obstacle.hpp (bevel or rounded tip, insertion v t' e_z and rotation ω t' about z).
 // Gaps are measured from each quadrature point's own gap at t = 0 (reference_gap_offset): the
-// cavity is meshed from the needle's shape, so the undeformed tissue touches the needle exactly
-// and only the faceting of its curved faces (initial_gap(), reported) separates the two. A user's
-// mesh (scene.mesh_file) is checked for that on construction: a cavity vertex off the needle's
-// (unrounded) surface by more than r/1000 stops the run with one line naming it.
+// cavity is meshed from the needle's shape and its nodes moved onto the rounded needle
+// (round_cavity_to_needle), so the undeformed tissue touches the needle and only the faceting of
+// its curved faces (initial_gap(), reported) separates the two. A user's
+// mesh (scene.mesh_file) is checked for that before its cavity is rounded: a cavity vertex off the
+// needle's (unrounded) surface by more than r/1000 stops the run with one line naming it.
 // contact.mode = "tied" keeps the earlier model instead (cavity nodes moved rigidly with the
 // needle by Dirichlet conditions, physics/mechanics/dirichlet.hpp) for comparison.
 //
@@ -29,6 +30,7 @@
 #include <memory>
 #include <vector>
 
+#include "model/cavity_rounding.hpp"
 #include "model/tet_mesh.hpp"
 #include "physics/contact/needle_obstacle.hpp"
 #include "physics/contact/penalty_contact.hpp"
@@ -49,6 +51,12 @@ std::shared_ptr<const RigidNeedle> rigid_needle_from_case(const Case& input,
 
 // True for the brain-tip scene with contact.mode = "frictional".
 bool needle_contact_enabled(const Case& input);
+
+// With needle contact, moves the mesh's cavity onto the rounded needle of the case at t = 0
+// (model/cavity_rounding.hpp), a user's mesh (scene.mesh_file) once its cavity has been checked
+// against the sharp needle (CaseError naming the largest offset); a tied or absent needle leaves
+// the mesh as it is. Returns what moved.
+CavityRounding round_cavity_to_needle(const Case& input, TetMesh& mesh);
 
 struct NeedleLoad {
   Point3 force{};   // on the needle, N

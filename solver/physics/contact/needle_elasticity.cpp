@@ -28,6 +28,8 @@ const std::string kRearSurface = "needle_rear";
 
 struct NeedleElasticity::Impl {
   std::vector<int> mesh_node;          // needle node -> mesh node
+  std::vector<int> load_node;          // needle node -> the mesh node whose force acts on it (the
+                                       // tissue node a needle node was split from, TetMesh::split_nodes)
   std::vector<char> clamped;           // per needle node: on needle_rear
   std::vector<Point3> position;        // per needle node: reference position, m
   std::vector<std::size_t> elements;   // mesh tets of the needle
@@ -68,6 +70,12 @@ NeedleElasticity::NeedleElasticity(const TetMesh& mesh, double youngs_modulus_pa
     }
   }
   const std::size_t nodes = m.mesh_node.size();
+  std::map<int, int> split_from;  // needle copy -> tissue node
+  for (const auto& [tissue, copy] : mesh.split_nodes) split_from[copy] = tissue;
+  for (int node : m.mesh_node) {
+    const auto it = split_from.find(node);
+    m.load_node.push_back(it == split_from.end() ? node : it->second);
+  }
   std::vector<std::set<int>> neighbours(nodes);
   for (std::size_t e : m.elements)
     for (int a = 0; a < kNodes; ++a)
@@ -126,7 +134,7 @@ NeedleElasticity::Deflection NeedleElasticity::deflection(const std::vector<Poin
     WriteArray load(m.rhs);
     // Clamped rows are identity rows: a zero load keeps their solution at 0.
     for (std::size_t a = 0; a < m.mesh_node.size(); ++a)
-      for (int i = 0; i < 3; ++i) load.data()[3 * a + i] = m.clamped[a] ? 0.0 : nodal_forces.at(m.mesh_node[a])[i];
+      for (int i = 0; i < 3; ++i) load.data()[3 * a + i] = m.clamped[a] ? 0.0 : nodal_forces.at(m.load_node[a])[i];
   }
   if (!m.solver.solve(m.rhs, m.solution))
     throw std::runtime_error("needle elasticity: the needle's linear solve failed: " + m.solver.last_failure());

@@ -26,9 +26,10 @@
 // a 0.8 mm mesh (reference_gap_offset hides the interference from the gap, not from the
 // projection). Both shrink with the element size at the edge, which is why the rounding needs the
 // graded mesh: on paper 001's uniform 0.4 mm core a radius of r/10 (32 µm for r = 0.32 mm) left 8
-// of 24 designs stopping with IDA_CONV_FAIL and r/4 was needed (the former contact.edge_rounding). The price is a needle a little smaller than its
-// meshed cavity along the edges (by ρ(1/sin(θ/2) - 1) at an edge of dihedral angle θ); its effect
-// on the maxima is in cases/README.md.
+// of 24 designs stopping with IDA_CONV_FAIL and r/4 was needed (the former contact.edge_rounding). The mesher carves
+// the cavity from the sharp tip, which is larger along the edges by ρ(1/sin(θ/2) - 1) at an edge
+// of dihedral angle θ; the run moves the cavity's nodes onto this rounded needle
+// (model/cavity_rounding.hpp), so the tissue has no re-entrant edge either.
 // Both A and B are convex, hence so is C, and the closest point is unique outside C:
 //   inside (sd_A <= 0 and sd_B <= 0): g = max(sd_A, sd_B), exact (the nearest boundary point is
 //     on the nearer of the two surfaces), with that surface's n and G. The normal jumps across the
