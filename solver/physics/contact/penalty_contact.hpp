@@ -14,7 +14,7 @@
 //   isosceles triangle of the face's reference area, times 2 per mesh.refinement_level L: each
 //   level halves the faces near the needle, and the enforcement stays that of level 0, so a
 //   refinement study measures the discretisation at one contact law instead of a penalty that
-//   doubles with every level and stalls Newton: cases/README.md, "Edge radius and mesh
+//   doubles with every level and stalls Newton: docs/study.md, "Edge radius and mesh
 //   grading"), c = penalty_factor, s = penalty_smoothing,
 //   μ₀ the tissue's instantaneous shear modulus. The penalty interpenetration d = p_N h/(c μ₀)
 //   (+ δ/2) is then the same fraction of the local element size on every mesh, and the error it
