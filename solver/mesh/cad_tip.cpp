@@ -106,8 +106,8 @@ CadTipTriangulation triangulate_cad_tip(const Case& c) {
       // edge, the trimmed core's edge (cad_needle.hpp) is their chord, off the curved edge by s²/(8R);
       // a run with 50 µm facets inside the bevel face (sizes not extended) stalled at t = 0.08 s on
       // the paper's tip at the default mesh.
-      // Delaunay: half the time of the default Frontal-Delaunay on the paper tip (77k facets, 6.7 s
-      // against 14 s on a loaded core); MeshAdapt took 177 s.
+      // Delaunay: the fastest of gmsh's surface algorithms on the paper tip's 77k facets
+      // (docs/speed.md).
       gmsh::option::setNumber("Mesh.Algorithm", 5);
       gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
       gmsh::option::setNumber("Mesh.ElementOrder", 1);

@@ -160,8 +160,7 @@ void set_mesh_options(const Case& c) {
   gmsh::option::setNumber("Mesh.ElementOrder", static_cast<double>(c.integer("mesh.order")));
   gmsh::option::setNumber("Mesh.SecondOrderLinear", 0);  // mid-side nodes on the curved CAD faces
   // The high-order optimiser keeps gmsh's six element layers around each element it curves.
-  // One layer meshed the default tip in 0.38 s instead of 1.37 s, but it moved the tip maxima of
-  // thin needles (r = 0.32 mm, 10 deg, 0.15 mm: log strain 0.370 -> 0.422, von Mises 6738 ->
+  // One layer meshes faster (docs/speed.md), but it moved the tip maxima of thin needles (r = 0.32 mm, 10 deg, 0.15 mm: log strain 0.370 -> 0.422, von Mises 6738 ->
   // 5613 Pa; repeated meshings with six layers agree within 1 %).
   gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
   gmsh::option::setNumber("Mesh.Binary", 1);

@@ -89,7 +89,7 @@
 // r = 0.83 mm, τ = 0.25 mm tips at 0.5, 1 and 2 mm/s stopped at 93-95 % of their histories). The
 // viscous term lets the slip run at a finite speed through such an event, and as the steps shrink
 // its c_j β p_N P dominates the Newton matrix, which makes the step's problem easier instead of
-// harder (with β = 2 s/m the 1 mm/s case runs to the end: 77 steps, 188 s).
+// harder (with β = 2 s/m the 1 mm/s case runs to the end; docs/accuracy.md §6).
 // Newton matrix: ∂t/∂x = -β p_N ∂v_T/∂x + β p' v_T nᵀ, ∂v_T/∂x = -(n·r) G - n (rᵀ G) - P W,
 // ∂t/∂v = -β p_N P, r = v - w.
 // The Coulomb part does not use y', so its Newton matrix stays bounded as IDA's steps shrink (the velocity

@@ -12,8 +12,7 @@
 // triangles whose boxes come within that distance: for a point at distance d from a surface of
 // facets s, a patch of radius about sqrt(2 d s) (the contact needle's queries sit at d ≈ ρ from
 // its core, cad_needle.hpp). Why not a uniform grid (the first version): with cells of two
-// facets a query at d = ρ = 100 µm walked ~3000 cells of 16 µm and made the CAD run 8x slower
-// than the analytic one. Queries are const (thread-safe).
+// facets a query at d = ρ = 100 µm walks ~3000 cells of 16 µm (docs/speed.md records the cost). Queries are const (thread-safe).
 #pragma once
 
 #include <array>
