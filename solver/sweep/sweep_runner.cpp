@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <cstdlib>
 #include <cstring>
@@ -155,9 +156,11 @@ std::string maxima_text(const nlohmann::json& summary) {
 }
 
 // A point's expected run time, up to a common factor, to start the longest runs first: the
-// simulated time over the cube of the element size (scene.kind "block": block.element_mm).
-// Starting the longest first keeps a long run from being last with the other cores idle (paper
-// 001's study: its slow case takes 0.2 s of history, the others 0.1 or 0.05 s).
+// simulated time over the cube of the element size (scene.kind "block": block.element_mm), times
+// 2 per mesh.refinement_level (each level halves the sizes near the needle, and a brain-tip run
+// took about twice as long per level in docs/accuracy.md §10). Starting the longest first keeps a long
+// run from being last with the other cores idle (paper 001's study: its slow case takes 0.2 s of
+// history, the others 0.1 or 0.05 s; `needlefem converge`: the finest level).
 double expected_cost(const DesignPoint& p) {
   const auto number = [&](const char* section, const char* key) {
     const auto table = p.resolved.find(section);
@@ -167,7 +170,8 @@ double expected_cost(const DesignPoint& p) {
   const auto kind = p.resolved.find("scene");
   const bool block = kind != p.resolved.end() && kind->value("kind", "") == "block";
   const double element = block ? number("block", "element_mm") : number("tissue", "core_element_mm");
-  return number("motion", "duration_s") / (element * element * element);
+  const double level = number("mesh", "refinement_level");
+  return number("motion", "duration_s") / (element * element * element) * std::exp2(level);
 }
 
 // How many possible design points are on a mesh coarser than the converged setting

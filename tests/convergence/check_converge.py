@@ -46,6 +46,8 @@ print(run.stdout, run.stderr)
 check(run.returncode == 0, f"converge exits 0 (got {run.returncode})")
 last = run.stdout.strip().splitlines()[-1] if run.stdout.strip() else ""
 check(last.startswith("converge: PASS"), f"the last stdout line is the verdict: {last!r}")
+started = [line.split("started ", 1)[1] for line in run.stdout.splitlines() if line.startswith("converge: started ")]
+check(started[:1] == ["level_2"], f"the finest level, the longest run, starts first: {started}")
 
 for level in range(3):
     summary = args.out / f"level_{level}" / "summary.json"
