@@ -123,16 +123,20 @@ CavityRounding round_cavity(TetMesh& mesh, const std::function<Point3(const Poin
         }
     front.swap(next);
   }
+  // The weights 1/distance² of each free vertex's neighbours, fixed over the sweeps.
+  std::vector<std::vector<double>> weight(free_vertices.size());
+  for (std::size_t i = 0; i < free_vertices.size(); ++i)
+    for (int other : neighbours[free_vertices[i]])
+      weight[i].push_back(1.0 / squared_distance(mesh.nodes[free_vertices[i]], mesh.nodes[other]));
   for (int sweep = 0; sweep < kSweeps; ++sweep) {
     std::vector<Point3> updated(free_vertices.size());
     for (std::size_t i = 0; i < free_vertices.size(); ++i) {
-      const int node = free_vertices[i];
+      const auto& around = neighbours[free_vertices[i]];
       Point3 sum{};
       double weights = 0.0;
-      for (int other : neighbours[node]) {
-        const double w = 1.0 / squared_distance(mesh.nodes[node], mesh.nodes[other]);
-        weights += w;
-        for (int c = 0; c < 3; ++c) sum[c] += w * move[other][c];
+      for (std::size_t j = 0; j < around.size(); ++j) {
+        weights += weight[i][j];
+        for (int c = 0; c < 3; ++c) sum[c] += weight[i][j] * move[around[j]][c];
       }
       for (int c = 0; c < 3; ++c) updated[i][c] = sum[c] / weights;
     }
