@@ -24,7 +24,9 @@
 //      edge's two vertices instead (the mean of their moves, keeping the mesher's curve), and
 //      where the tet stays poor, to their midpoint (a straight edge). Such an edge is off the
 //      rounded surface by up to its sagitta; reference_gap_offset in
-//      physics/contact/penalty_contact.hpp takes those gaps as the start.
+//      physics/contact/penalty_contact.hpp takes those gaps as the start;
+//   4. a tet all that leaves inverted or nearly so (scaled Jacobian below 0.05): each free vertex
+//      of it moves by a compass search on the worst straight-sided shape around it.
 // The moves point into the needle (the rounded needle lies inside the sharp one), so the tissue
 // tets at the edges mostly grow; the caller checks every tet's Jacobian afterwards
 // (mesh_quality.hpp).
@@ -49,6 +51,7 @@ struct CavityRounding {
   int smoothing_rounds = 0;     // rounds that moved the free vertices of poor tets
   std::size_t relaxed_edges = 0;       // cavity edges of poor tets left with the mesher's curve
   std::size_t straightened_edges = 0;  // ... and of those still poor, made straight
+  std::size_t untangled_vertices = 0;  // free vertices of tets still (nearly) inverted, searched further
   double tissue_volume_gained_m3 = 0.0;  // where the needle's edges were rounded off (set by the caller)
 };
 
