@@ -26,7 +26,7 @@ NewtonMatrixFactor::NewtonMatrixFactor(std::vector<char> prescribed, const Newto
   KspOptions ksp_options{.method = options.method,
                          .relative_tolerance = options.relative_tolerance,
                          .prefix = options.prefix};
-  if (options.method == "cholmod") {
+  if (options.method == "cholesky") {
     cholesky_ = std::make_unique<SparseCholesky>(
         std::move(prescribed),
         options.preconditioner_only ? SparseCholesky::Precision::single_precision

@@ -3,8 +3,9 @@
 // decide when to try which. The physics assembles J (a SeqAIJ matrix whose prescribed rows are
 // identity rows) and calls factor(), then solve() as often as the integrator asks.
 //
-// integration.linear_solver (NewtonMatrixOptions::method) selects
-//   "cholmod"   : sparse Cholesky of J's symmetric part on the free unknowns (SparseCholesky,
+// integration.linear_solver (NewtonMatrixOptions::method) selects ("cholmod", the first one's
+// former name, still reads as "cholesky": case/schema.cpp)
+//   "cholesky"  : sparse Cholesky of J's symmetric part on the free unknowns (SparseCholesky,
 //                 sparse_cholesky.hpp), MUMPS LU (KspSolver) for a setup where that fails:
 //                 - integration.newton = "modified" (the solves must be exact): CHOLMOD's
 //                   double-precision factor;
@@ -15,7 +16,7 @@
 //                   (then Cholesky of the symmetric part all the same).
 //   "mumps", "gmres-gamg", "gmres-asm": KspSolver's methods (ksp_solver.hpp), every setup.
 //
-// Policies (method "cholmod" only):
+// Policies (method "cholesky" only):
 // - A symmetric part found indefinite (sliding friction) usually stays so for the next setups:
 //   the next kCholeskySkipsAfterIndefinite setups go straight to MUMPS LU rather than pay a
 //   failed Cholesky attempt each.
@@ -41,12 +42,12 @@ class KspSolver;
 class SparseCholesky;
 
 struct NewtonMatrixOptions {
-  std::string method = "mumps";       // integration.linear_solver: "cholmod" or a KspSolver method
+  std::string method = "mumps";       // integration.linear_solver: "cholesky" or a KspSolver method
   double relative_tolerance = 1e-10;  // Krylov methods: ||b - J x|| <= rtol ||b||
   // PETSc options prefix of the KSP for command-line overrides (-nf_ksp_type ..., -nf_pc_type ...).
   std::string prefix = "nf_";
   // The solves only precondition an outer iteration (integration.newton = "krylov": IDA's GMRES
-  // on the exact Jacobian's action), so "cholmod" may factor and solve in single precision.
+  // on the exact Jacobian's action), so "cholesky" may factor and solve in single precision.
   bool preconditioner_only = false;
   // ... and from a symmetric positive definite approximation of the Newton matrix
   // (integration.krylov_preconditioner = "symmetric"; NewtonMatrix in
@@ -77,7 +78,7 @@ class NewtonMatrixFactor {
   long iterations() const;  // Krylov iterations over all solves (0 for direct methods)
   // How the Newton matrices were factored: by sparse Cholesky, by the single-precision LU on
   // its structure (unsymmetric matrices where the factor preconditions GMRES), and by the KSP
-  // (all of them for "mumps" and the Krylov methods; with "cholmod", the setups that these
+  // (all of them for "mumps" and the Krylov methods; with "cholesky", the setups that these
   // could not factor or were not tried on).
   struct Factorisations {
     long cholesky = 0;
@@ -87,7 +88,7 @@ class NewtonMatrixFactor {
   Factorisations factorisations() const;
 
  private:
-  std::unique_ptr<SparseCholesky> cholesky_;  // method "cholmod" only
+  std::unique_ptr<SparseCholesky> cholesky_;  // method "cholesky" only
   std::unique_ptr<KspSolver> ksp_;            // the method, or MUMPS LU where Cholesky fails
   bool cholesky_factored_ = false;            // which of the two holds the last factorisation
   static constexpr int kCholeskySkipsAfterIndefinite = 3;

@@ -1,4 +1,7 @@
 // The [integration] case keys reach the integrator and linear-solver options, with defaults.
+#include <string>
+#include <vector>
+
 #include <gtest/gtest.h>
 
 #include "case/case.hpp"
@@ -16,11 +19,21 @@ TEST(IntegrationCaseOptions, DefaultsAreIdaDefaultsAndSparseCholesky) {
   EXPECT_EQ(ida.max_newton_iterations, 20);  // not IDA's 4: contact kinks need more (schema.cpp)
   EXPECT_FALSE(ida.fixed_step.has_value());
   const NewtonMatrixOptions newton = newton_matrix_options_from_case(c);
-  EXPECT_EQ(newton.method, "cholmod");
+  EXPECT_EQ(newton.method, "cholesky");
   EXPECT_EQ(newton.prefix, "nf_");
   // Newton-Krylov: the factor only preconditions (single-precision solves), with the exact matrix.
   EXPECT_TRUE(newton.preconditioner_only);
   EXPECT_FALSE(newton.symmetric_preconditioner);
+}
+
+// "cholmod", the sparse Cholesky's former name, still selects it, in the file and in overrides.
+TEST(IntegrationCaseOptions, FormerCholmodNameReadsAsCholesky) {
+  const auto method = [](const std::string& toml, const std::vector<std::string>& overrides) {
+    return newton_matrix_options_from_case(Case::parse(toml, "inline", overrides)).method;
+  };
+  EXPECT_EQ(method("[integration]\nlinear_solver = \"cholmod\"\n", {}), "cholesky");
+  EXPECT_EQ(method("", {"integration.linear_solver=cholmod"}), "cholesky");
+  EXPECT_EQ(method("", {"integration.linear_solver=mumps"}), "mumps");
 }
 
 TEST(IntegrationCaseOptions, SymmetricPreconditionerOnlyWhereTheMatrixPreconditions) {
