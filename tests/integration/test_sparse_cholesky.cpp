@@ -3,8 +3,10 @@
 // explicitly symmetrised free block and the prescribed columns moved to the right-hand side;
 // an indefinite matrix is a failed factorisation; refactoring with new values stays exact. The
 // single-precision factorisation agrees with CHOLMOD's double one to single precision, on one
-// thread and with subtrees factored on two; in single precision an unsymmetric matrix is
-// factored by LU and solved exactly (to single precision).
+// thread and with subtrees factored on two to four (oversubscribed on a smaller machine); in
+// single precision an unsymmetric matrix is factored by LU and solved exactly (to single
+// precision); a team smaller than the factor planned for (a nested region here, OMP_THREAD_LIMIT
+// in tests/integration/CMakeLists.txt) gives the same solution.
 #include <cmath>
 #include <string>
 #include <vector>
@@ -164,10 +166,10 @@ TEST(SparseCholesky, SinglePrecisionSolveAgreesToSinglePrecision) {
   MatDestroy(&A);
 }
 
-// A 3-D matrix large enough for many supernodes and for root separators whose solves two threads
-// share: the single-precision factor (one thread, then two threads with concurrent subtrees)
-// against CHOLMOD's double-precision one.
-TEST(SparseCholesky, SinglePrecisionFactorOnOneAndTwoThreadsAgreesWithDouble) {
+// A 3-D matrix large enough for many supernodes and for root separators whose solves the threads
+// share: the single-precision factor (one thread, then two to four threads with concurrent
+// subtrees) against CHOLMOD's double-precision one.
+TEST(SparseCholesky, SinglePrecisionFactorOnOneToFourThreadsAgreesWithDouble) {
   constexpr PetscInt kCubeSide = 22;
   Mat A = cube_matrix(kCubeSide);
   const std::vector<char> prescribed = prescribe_rows(A);
@@ -177,7 +179,7 @@ TEST(SparseCholesky, SinglePrecisionFactorOnOneAndTwoThreadsAgreesWithDouble) {
   Vec reference = cholesky_solve(exact, b);
   const int threads_before = omp_get_max_threads();
   std::vector<Vec> solutions;
-  for (int threads : {1, 2}) {
+  for (int threads : {1, 2, 3, 4}) {
     omp_set_num_threads(threads);  // the subtrees are planned at the first factor()
     SparseCholesky single(prescribed, SparseCholesky::Precision::single_precision);
     ASSERT_TRUE(single.factor(A)) << single.last_failure();
@@ -193,8 +195,9 @@ TEST(SparseCholesky, SinglePrecisionFactorOnOneAndTwoThreadsAgreesWithDouble) {
     EXPECT_EQ(single.shared_solve_supernodes() > 0, threads > 1);
   }
   omp_set_num_threads(threads_before);
-  EXPECT_LT(relative_difference(solutions[1], solutions[0]), 1e-5);
-  for (Vec v : {b, reference, solutions[0], solutions[1]}) VecDestroy(&v);
+  for (Vec x : solutions) EXPECT_LT(relative_difference(x, solutions.front()), 1e-5);
+  for (Vec v : solutions) VecDestroy(&v);
+  for (Vec v : {b, reference}) VecDestroy(&v);
   MatDestroy(&A);
 }
 
@@ -230,17 +233,17 @@ Mat paired_cube_matrix(PetscInt side, double rotation, bool pairs_as_blocks = fa
 
 // In single precision an unsymmetric free block is factored by LU on the Cholesky structure:
 // the solve is J⁻¹ b itself (prescribed rows are identity rows), against MUMPS LU in double, on
-// one thread and with subtrees on two: a mildly unsymmetric matrix (cube_matrix with skew 0.6,
+// one thread and with subtrees on two to four: a mildly unsymmetric matrix (cube_matrix with skew 0.6,
 // diagonally dominant) and one that needs row exchanges (paired_cube_matrix, rotation 40). The
 // unsymmetric part changes the answer by far more than the tolerance, and a symmetric matrix
 // still takes the Cholesky path.
-TEST(SparseCholesky, SinglePrecisionLuOfUnsymmetricMatricesOnOneAndTwoThreadsAgreesWithMumps) {
+TEST(SparseCholesky, SinglePrecisionLuOfUnsymmetricMatricesOnOneToFourThreadsAgreesWithMumps) {
   constexpr PetscInt kCubeSide = 16;
   const int threads_before = omp_get_max_threads();
   const auto check_lu = [&](Mat A, Mat symmetric_part, const char* name) {
     const std::vector<char> prescribed = prescribe_rows(A);
     Vec b = right_hand_side(rows_of(A)), reference = lu_solve(A, b);
-    for (int threads : {1, 2}) {
+    for (int threads : {1, 2, 3, 4}) {
       omp_set_num_threads(threads);  // the subtrees are planned at the first factor()
       SparseCholesky single(prescribed, SparseCholesky::Precision::single_precision);
       ASSERT_TRUE(single.factor(A)) << single.last_failure();
@@ -270,6 +273,48 @@ TEST(SparseCholesky, SinglePrecisionLuOfUnsymmetricMatricesOnOneAndTwoThreadsAgr
   };
   check_lu(cube_matrix(kCubeSide, 0.6), cube_matrix(kCubeSide), "skew 0.6");
   check_lu(paired_cube_matrix(kCubeSide, 40.0), paired_cube_matrix(kCubeSide, 0.0), "rotation 40");
+}
+
+// OpenMP may give a team smaller than the one the factor planned its subtrees for (OMP_THREAD_LIMIT,
+// a nested parallel region, dynamic teams). Planned for three threads, then factored and solved
+// inside a parallel region where nested regions get one thread: every subtree is still factored
+// and the solves' barriers open (one sized for the plan would wait for ever), on an SPD matrix
+// (Cholesky) and an unsymmetric one (LU), against MUMPS LU.
+TEST(SparseCholesky, SinglePrecisionFactorOnAShorterTeamThanPlannedAgreesWithMumps) {
+  constexpr PetscInt kCubeSide = 16;
+  const int threads_before = omp_get_max_threads(), levels_before = omp_get_max_active_levels();
+  for (const double skew : {0.0, 0.6}) {
+    Mat A = cube_matrix(kCubeSide, skew);
+    const std::vector<char> prescribed = prescribe_rows(A);
+    Vec b = right_hand_side(rows_of(A)), reference = lu_solve(A, b), x = nullptr;
+    petsc_check(VecDuplicate(b, &x), "VecDuplicate");
+    omp_set_num_threads(3);
+    omp_set_max_active_levels(1);
+    SparseCholesky single(prescribed, SparseCholesky::Precision::single_precision);
+    int team = 0;
+    bool factored = false;
+#pragma omp parallel num_threads(2)
+    if (omp_get_thread_num() == 0) {
+#pragma omp parallel num_threads(3)
+#pragma omp single
+      team = omp_get_num_threads();
+      factored = single.factor(A);
+      if (factored) single.solve(b, x);
+    }
+    omp_set_max_active_levels(levels_before);
+    omp_set_num_threads(threads_before);
+    ASSERT_LT(team, 3) << "no shorter team provoked";
+    ASSERT_TRUE(factored) << single.last_failure();
+    const double error = relative_difference(x, reference);
+    std::printf("single precision, skew %.1f, planned for 3 threads, a team of %d: %d concurrent subtrees, "
+                "|x - x_MUMPS| / |x_MUMPS| = %.2e\n",
+                skew, team, single.concurrent_subtrees(), error);
+    EXPECT_GT(single.concurrent_subtrees(), 1);  // the plan was for several threads
+    EXPECT_EQ(single.lu_factorizations(), skew > 0.0 ? 1 : 0);
+    EXPECT_LT(error, 1e-5);
+    for (Vec v : {b, reference, x}) VecDestroy(&v);
+    MatDestroy(&A);
+  }
 }
 
 // A matrix with a block size is ordered by nested dissection of its node graph (every 7th
