@@ -6,8 +6,10 @@
 // thread and with subtrees factored on two to four (oversubscribed on a smaller machine); in
 // single precision an unsymmetric matrix is factored by LU and solved exactly (to single
 // precision); a team smaller than the factor planned for (a nested region here, OMP_THREAD_LIMIT
-// in tests/integration/CMakeLists.txt) gives the same solution.
+// in tests/integration/CMakeLists.txt) gives the same solution. NewtonMatrixFactor, above them,
+// falls back to MUMPS LU where Cholesky fails and skips Cholesky for the next setups.
 #include <cmath>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -16,6 +18,7 @@
 #include <petscksp.h>
 
 #include "integration/ksp_solver.hpp"
+#include "integration/newton_matrix_factor.hpp"
 #include "integration/petsc_arrays.hpp"
 #include "integration/petsc_session.hpp"
 #include "integration/sparse_cholesky.hpp"
@@ -420,6 +423,47 @@ TEST(SparseCholesky, UnsymmetricPatternIsRejected) {
   SparseCholesky cholesky(std::vector<char>(2, 0));
   EXPECT_THROW(cholesky.factor(A), std::invalid_argument);
   MatDestroy(&A);
+}
+
+// NewtonMatrixFactor's "cholesky" (double precision): an SPD matrix is factored by Cholesky, an
+// indefinite one by MUMPS LU after the failed Cholesky attempt, both solved exactly (against
+// MUMPS); the three setups after the indefinite one go straight to LU, the fourth tries Cholesky
+// again.
+TEST(NewtonMatrixFactor, IndefiniteMatrixFallsBackToLuAndSkipsCholeskyForThreeSetups) {
+  Mat spd = grid_matrix(9.0, 0.0), indefinite = grid_matrix(1.0, 0.0);
+  const std::vector<char> prescribed = prescribe_rows(spd);
+  prescribe_rows(indefinite);
+  NewtonMatrixFactor factor(prescribed, {.method = "cholesky"});
+  Vec b = right_hand_side();
+  const auto solve_error = [&](Mat A) {
+    Vec x = nullptr, reference = lu_solve(A, b);
+    petsc_check(VecDuplicate(b, &x), "VecDuplicate");
+    EXPECT_TRUE(factor.solve(b, x));
+    const double error = relative_difference(x, reference);
+    for (Vec v : {x, reference}) VecDestroy(&v);
+    return error;
+  };
+  const auto expect_counts = [&](long cholesky, long ksp) {
+    EXPECT_EQ(factor.factorisations().cholesky, cholesky);
+    EXPECT_EQ(factor.factorisations().lu, 0);
+    EXPECT_EQ(factor.factorisations().ksp, ksp);
+  };
+  ASSERT_TRUE(factor.factor(spd));
+  EXPECT_LT(solve_error(spd), 1e-12);
+  expect_counts(1, 0);
+  ASSERT_TRUE(factor.factor(indefinite));
+  EXPECT_LT(solve_error(indefinite), 1e-12);
+  expect_counts(2, 1);  // the failed attempt counts
+  for (int setup = 0; setup < 3; ++setup) ASSERT_TRUE(factor.factor(spd));
+  EXPECT_LT(solve_error(spd), 1e-12);
+  expect_counts(2, 4);
+  ASSERT_TRUE(factor.factor(spd));
+  EXPECT_LT(solve_error(spd), 1e-12);
+  expect_counts(3, 4);
+  EXPECT_THROW(NewtonMatrixFactor(prescribed, {.method = "pardiso"}), std::invalid_argument);
+  VecDestroy(&b);
+  MatDestroy(&indefinite);
+  MatDestroy(&spd);
 }
 
 }  // namespace
