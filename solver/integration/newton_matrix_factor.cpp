@@ -1,6 +1,8 @@
 // The methods and policies: newton_matrix_factor.hpp.
 #include "integration/newton_matrix_factor.hpp"
 
+#include <exception>
+
 #include "integration/ksp_solver.hpp"
 #include "integration/petsc_session.hpp"
 #include "integration/sparse_cholesky.hpp"
@@ -17,6 +19,33 @@ void widen_mumps_workspace(const std::string& prefix) {
   if (!given)
     petsc_check(PetscOptionsSetValue(nullptr, ("-" + prefix + "mat_mumps_icntl_14").c_str(), "100"),
                 "PetscOptionsSetValue");
+}
+
+NewtonMatrixFactor& factor_of(PC pc) {
+  void* context = nullptr;
+  petsc_check(PCShellGetContext(pc, &context), "PCShellGetContext");
+  return *static_cast<NewtonMatrixFactor*>(context);
+}
+
+// PCSHELL callbacks: no exception may cross into PETSc.
+PetscErrorCode set_up_shell(PC pc) noexcept {
+  try {
+    Mat op = nullptr, matrix = nullptr;
+    petsc_check(PCGetOperators(pc, &op, &matrix), "PCGetOperators");
+    if (!factor_of(pc).factor(matrix)) petsc_check(PCSetFailedReason(pc, PC_FACTOR_OTHER), "PCSetFailedReason");
+    return 0;
+  } catch (const std::exception&) {
+    return PETSC_ERR_LIB;
+  }
+}
+
+PetscErrorCode apply_shell(PC pc, Vec b, Vec x) noexcept {
+  try {
+    if (!factor_of(pc).solve(b, x)) petsc_check(PCSetFailedReason(pc, PC_SUBPC_ERROR), "PCSetFailedReason");
+    return 0;
+  } catch (const std::exception&) {
+    return PETSC_ERR_LIB;
+  }
 }
 
 }  // namespace
@@ -53,6 +82,14 @@ bool NewtonMatrixFactor::solve(Vec b, Vec x) {
   if (!cholesky_factored_) return ksp_->solve(b, x);
   cholesky_->solve(b, x);
   return true;
+}
+
+void NewtonMatrixFactor::attach_to(PC pc) {
+  petsc_check(PCSetType(pc, PCSHELL), "PCSetType");
+  petsc_check(PCShellSetContext(pc, this), "PCShellSetContext");
+  petsc_check(PCShellSetName(pc, "needlefem Newton-matrix factor"), "PCShellSetName");
+  petsc_check(PCShellSetSetUp(pc, set_up_shell), "PCShellSetSetUp");
+  petsc_check(PCShellSetApply(pc, apply_shell), "PCShellSetApply");
 }
 
 long NewtonMatrixFactor::iterations() const { return ksp_->iterations(); }

@@ -28,6 +28,9 @@
 //   "Measurements formerly in code comments".
 // When an earlier step's factor may still serve is the integrator's decision (StaleMatrixPolicy,
 // ida_integrator.cpp): it sees GMRES's iterations, which this component does not.
+//
+// A PETSc KSP can use the component as its preconditioner (attach_to: a PCSHELL whose setup
+// calls factor() with the KSP's preconditioning matrix and whose apply calls solve()).
 #pragma once
 
 #include <memory>
@@ -35,6 +38,7 @@
 #include <vector>
 
 #include <petscmat.h>
+#include <petscpc.h>
 
 namespace needlefem {
 
@@ -74,6 +78,10 @@ class NewtonMatrixFactor {
   bool solve(Vec b, Vec x);
   // The integrator accepted a step: a single-precision factor that gave way is tried again.
   void step_accepted() { setups_since_accepted_step_ = 0; }
+  // Makes `pc` a PCSHELL around this component: its setup factors the preconditioning matrix,
+  // its apply solves; where either fails, the PC's failed reason says so (a KSP then stops with
+  // KSP_DIVERGED_PC_FAILED). This object must outlive the PC's use of it.
+  void attach_to(PC pc);
 
   long iterations() const;  // Krylov iterations over all solves (0 for direct methods)
   // How the Newton matrices were factored: by sparse Cholesky, by the single-precision LU on

@@ -7,9 +7,11 @@
 // single precision an unsymmetric matrix is factored by LU and solved exactly (to single
 // precision); a team smaller than the factor planned for (a nested region here, OMP_THREAD_LIMIT
 // in tests/integration/CMakeLists.txt) gives the same solution. NewtonMatrixFactor, above them,
-// falls back to MUMPS LU where Cholesky fails and skips Cholesky for the next setups.
+// falls back to MUMPS LU where Cholesky fails and skips Cholesky for the next setups, and serves
+// a PETSc KSP as its preconditioner.
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -464,6 +466,59 @@ TEST(NewtonMatrixFactor, IndefiniteMatrixFallsBackToLuAndSkipsCholeskyForThreeSe
   VecDestroy(&b);
   MatDestroy(&indefinite);
   MatDestroy(&spd);
+}
+
+// Behind PETSc's preconditioner interface (attach_to): flexible GMRES on an unsymmetric matrix,
+// preconditioned by the single-precision LU, reaches a relative residual of 1e-12 in a few
+// iterations and MUMPS's solution; a singular matrix, on which Cholesky and then MUMPS fail, is a
+// failed preconditioner, which the KSP reports instead of iterating. Flexible GMRES because
+// a single-precision solve is linear only to its round-off: plain GMRES's left-preconditioned
+// residual estimate then reaches 1e-12 while the error stays at 1e-7.
+TEST(NewtonMatrixFactor, AsAShellPreconditionerOfAPetscKsp) {
+  const auto gmres = [](NewtonMatrixFactor& factor, Mat A, Vec b, Vec x) {
+    KSP ksp = nullptr;
+    PC pc = nullptr;
+    petsc_check(KSPCreate(PETSC_COMM_SELF, &ksp), "KSPCreate");
+    petsc_check(KSPSetType(ksp, KSPFGMRES), "KSPSetType");
+    petsc_check(KSPGetPC(ksp, &pc), "KSPGetPC");
+    factor.attach_to(pc);
+    petsc_check(KSPSetTolerances(ksp, 1e-12, PETSC_DEFAULT, PETSC_DEFAULT, 50), "KSPSetTolerances");
+    petsc_check(KSPSetOperators(ksp, A, A), "KSPSetOperators");
+    petsc_check(KSPSolve(ksp, b, x), "KSPSolve");
+    KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
+    PetscInt iterations = 0;
+    petsc_check(KSPGetConvergedReason(ksp, &reason), "KSPGetConvergedReason");
+    petsc_check(KSPGetIterationNumber(ksp, &iterations), "KSPGetIterationNumber");
+    KSPDestroy(&ksp);
+    return std::make_pair(reason, iterations);
+  };
+  Mat A = cube_matrix(16, 0.6);
+  const std::vector<char> prescribed = prescribe_rows(A);
+  Vec b = right_hand_side(rows_of(A)), reference = lu_solve(A, b), x = nullptr;
+  petsc_check(VecDuplicate(b, &x), "VecDuplicate");
+  NewtonMatrixFactor single(prescribed, {.method = "cholesky", .preconditioner_only = true});
+  const auto [reason, iterations] = gmres(single, A, b, x);
+  const double error = relative_difference(x, reference);
+  std::printf("FGMRES with the single-precision LU as a shell preconditioner: %ld iterations, |x - x_MUMPS| / "
+              "|x_MUMPS| = %.2e\n", static_cast<long>(iterations), error);
+  EXPECT_GT(reason, 0);
+  EXPECT_LE(iterations, 5);
+  EXPECT_LT(error, 1e-10);
+  EXPECT_EQ(single.factorisations().lu, 1);
+  for (Vec v : {b, reference, x}) VecDestroy(&v);
+  MatDestroy(&A);
+
+  Mat singular = nullptr;  // diag(1, 0, 1)
+  petsc_check(MatCreateSeqAIJ(PETSC_COMM_SELF, 3, 3, 1, nullptr, &singular), "MatCreateSeqAIJ");
+  for (PetscInt row = 0; row < 3; ++row)
+    petsc_check(MatSetValue(singular, row, row, row == 1 ? 0.0 : 1.0, INSERT_VALUES), "MatSetValue");
+  assemble(singular);
+  petsc_check(MatCreateVecs(singular, &x, &b), "MatCreateVecs");
+  petsc_check(VecSet(b, 1.0), "VecSet");
+  NewtonMatrixFactor exact(std::vector<char>(3, 0), {.method = "cholesky"});
+  EXPECT_EQ(gmres(exact, singular, b, x).first, KSP_DIVERGED_PC_FAILED);
+  for (Vec v : {b, x}) VecDestroy(&v);
+  MatDestroy(&singular);
 }
 
 }  // namespace
