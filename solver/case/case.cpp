@@ -96,6 +96,8 @@ class Checker {
       case KeyType::Choice: {
         auto s = node.as_string();
         if (!s) fail(key, fmt::format("expected a string, got {}", node_type_name(node)));
+        for (const auto& [former, current] : spec.aliases)
+          if (s->get() == former) return current;
         if (std::find(spec.choices.begin(), spec.choices.end(), s->get()) == spec.choices.end())
           fail(key, fmt::format("'{}' is not one of: {}", s->get(), fmt::join(spec.choices, ", ")));
         return s->get();

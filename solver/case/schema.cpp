@@ -45,6 +45,11 @@ KeySpec choice(std::string key, std::string fallback, std::vector<std::string> c
   s.choices = std::move(choices);
   return s;
 }
+// A choice whose values were renamed: the former names still read as the new ones.
+KeySpec renamed(KeySpec spec, std::vector<std::pair<std::string, std::string>> aliases) {
+  spec.aliases = std::move(aliases);
+  return spec;
+}
 KeySpec reals(std::string key, KeyDefault fallback, std::size_t length, double min, double max,
               std::string help, bool min_exclusive = false) {
   KeySpec s = make(std::move(key), KeyType::RealList, std::move(fallback), std::move(help));
@@ -331,11 +336,15 @@ std::vector<KeySpec> build_schema() {
            "Stability studies: steps of exactly this size with the error test switched off "
            "(Newton still converges to the tolerances; needs integration.newton = \"modified\"); absent = "
            "adaptive steps"),
-      choice("integration.linear_solver", "cholmod", {"cholmod", "mumps", "gmres-gamg", "gmres-asm"},
-             "Newton-matrix solver: sparse Cholesky (CHOLMOD) of the matrix's symmetric part on the free "
-             "unknowns, with MUMPS LU for a setup where that is not positive definite; direct LU (MUMPS); or "
-             "GMRES with AMG or additive Schwarz/ILU. With friction the Cholesky factor is a preconditioner, "
-             "not the exact inverse; override KSP details after `--` with -nf_ksp_* / -nf_pc_* options"),
+      renamed(choice("integration.linear_solver", "cholesky", {"cholesky", "mumps", "gmres-gamg", "gmres-asm"},
+                     "How the Newton matrix is factored. 'cholesky': sparse Cholesky of its symmetric part on the "
+                     "free unknowns, in double precision by CHOLMOD where integration.newton = 'modified', in "
+                     "single precision on CHOLMOD's ordering where 'krylov' (by LU where friction makes the matrix "
+                     "unsymmetric, unless integration.krylov_preconditioner = 'symmetric'), MUMPS LU for a setup "
+                     "that it cannot factor; 'mumps': MUMPS LU; 'gmres-gamg', 'gmres-asm': GMRES with AMG or "
+                     "additive Schwarz/ILU. Override KSP details after `--` with -nf_ksp_* / -nf_pc_* options. "
+                     "'cholmod', its former name, still reads as 'cholesky'"),
+              {{"cholmod", "cholesky"}}),
       real("integration.linear_relative_tolerance", 1e-10, 0.0, 1.0,
            "Krylov solvers: relative residual reduction per linear solve"),
 

@@ -4,6 +4,7 @@
 
 #include <optional>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -23,6 +24,8 @@ struct KeySpec {
   double min = -1e300, max = 1e300;  // inclusive numeric range (per element for lists)
   bool min_exclusive = false;
   std::vector<std::string> choices;  // for KeyType::Choice
+  // KeyType::Choice: former names still accepted, each with the choice it now reads as.
+  std::vector<std::pair<std::string, std::string>> aliases;
   std::size_t list_length = 0;       // for KeyType::RealList; 0 = any non-empty length
 };
 

@@ -24,8 +24,8 @@ IdaOptions ida_options_from_case(const Case& c) {
   return options;
 }
 
-KspOptions ksp_options_from_case(const Case& c, const std::string& prefix) {
-  KspOptions options;
+NewtonMatrixOptions newton_matrix_options_from_case(const Case& c, const std::string& prefix) {
+  NewtonMatrixOptions options;
   options.method = c.text("integration.linear_solver");
   options.relative_tolerance = c.real("integration.linear_relative_tolerance");
   options.prefix = prefix;

@@ -5,12 +5,12 @@
 
 #include "case/case.hpp"
 #include "integration/ida_integrator.hpp"
-#include "integration/ksp_solver.hpp"
+#include "integration/newton_matrix_factor.hpp"
 
 namespace needlefem {
 
 IdaOptions ida_options_from_case(const Case& c);
 // `prefix` is the PETSc options prefix for command-line overrides (-nf_ksp_type ...).
-KspOptions ksp_options_from_case(const Case& c, const std::string& prefix = "nf_");
+NewtonMatrixOptions newton_matrix_options_from_case(const Case& c, const std::string& prefix = "nf_");
 
 }  // namespace needlefem

@@ -29,13 +29,6 @@ struct KspOptions {
   double relative_tolerance = 1e-10;
   int max_iterations = 1000;
   std::string prefix = "nf_";
-  // The solves only precondition an outer iteration (integration.newton = "krylov": IDA's
-  // GMRES on the exact Jacobian's action), so "cholmod" may solve in single precision.
-  bool preconditioner_only = false;
-  // ... and may then be factored from a symmetric positive definite approximation of the
-  // Newton matrix (integration.krylov_preconditioner = "symmetric"; NewtonMatrix in
-  // physics/mechanics/surface_load.hpp).
-  bool symmetric_preconditioner = false;
 };
 
 class KspSolver {

@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cmath>
 #include <numeric>
+#include <optional>
 #include <stdexcept>
 #include <thread>
 
@@ -317,16 +318,16 @@ bool SinglePrecisionFactor::factor_range(int first, int last, std::vector<int>& 
 // updates, the rows below its diagonal block for the triangular solve. Small supernodes go to
 // one thread: a barrier costs more than they do.
 bool SinglePrecisionFactor::factor_top(std::vector<int>& head, std::vector<Workspace>& work) {
-  const int threads = static_cast<int>(work.size());
   // Whether supernode i of the top part factored, by the parity of i: a thread reads entry i % 2
   // after the barrier that ends its single writer; the next writer of that entry, i + 2's, comes
   // after i + 1's barrier, which no thread passes before all have read.
   bool factored[2] = {true, true};
   std::vector<Update>& updates = work.front().updates;
   std::vector<int>& map = work.front().map;
-#pragma omp parallel num_threads(threads)
+#pragma omp parallel num_threads(static_cast<int>(work.size()))
   {
-    const int t = omp_get_thread_num();
+    // The shares are of the team OpenMP gave, which may be smaller than asked for.
+    const int t = omp_get_thread_num(), threads = omp_get_num_threads();
     for (std::size_t i = 0; i < top_.size(); ++i) {
       const int j = top_[i];
       bool& done = factored[i % 2];
@@ -432,12 +433,12 @@ bool SinglePrecisionFactor::factor_values() {
   std::vector<Workspace> work(threads, Workspace{std::vector<int>(n_), std::vector<float>(max_update_), {}});
   bool ok = true;
   if (threads > 1) {
+    // Thread t takes the subtrees planned for threads t, t + team, ...: OpenMP may give fewer
+    // threads than planned (OMP_THREAD_LIMIT, a nested parallel region, dynamic teams).
 #pragma omp parallel num_threads(threads) reduction(&& : ok)
-    {
-      const int t = omp_get_thread_num();
-      for (const auto& [first, last] : thread_ranges_[t])
-        if (ok) ok = factor_range(first, last, heads[t], work[t]);
-    }
+    for (int planned = omp_get_thread_num(); planned < threads; planned += omp_get_num_threads())
+      for (const auto& [first, last] : thread_ranges_[planned])
+        if (ok) ok = factor_range(first, last, heads[planned], work[planned]);
   }
   if (!ok) return false;
   // The lists of each thread joined into the first's.
@@ -607,14 +608,13 @@ void SinglePrecisionFactor::solve(const double* r, double* x) {
   float* y = work_.data();
   const BlasThreads one_each(1);
   for (std::size_t k = 0; k < n; ++k) y[k] = static_cast<float>(r[perm_[k]]);  // y = P r
-  if (threads > 1) {  // L z = y on the subtrees
+  if (threads > 1) {  // L z = y on the subtrees, shared out as in factor_values()
 #pragma omp parallel num_threads(threads)
-    {
-      const int t = omp_get_thread_num();
-      float* above = above_[t].data();
+    for (int planned = omp_get_thread_num(); planned < threads; planned += omp_get_num_threads()) {
+      float* above = above_[planned].data();
       for (int j : top_) std::fill(above + super_[j], above + super_[j + 1], 0.0f);
-      for (const auto& [first, last] : thread_ranges_[t])
-        for (int s = first; s < last; ++s) forward(s, y, above, gathered_[t].data());
+      for (const auto& [first, last] : thread_ranges_[planned])
+        for (int s = first; s < last; ++s) forward(s, y, above, gathered_[planned].data());
     }
     for (int j : top_)
       for (int k = super_[j]; k < super_[j + 1]; ++k)
@@ -622,24 +622,28 @@ void SinglePrecisionFactor::solve(const double* r, double* x) {
   }
   float* gathered = gathered_.front().data();
   if (threads > 1) {  // the top part: L z = y, then Lᵀ w = z
-    SpinBarrier barrier(threads);
+    std::optional<SpinBarrier> barrier;
 #pragma omp parallel num_threads(threads)
     {
-      const int t = omp_get_thread_num();
+      // Shares and barrier are of the team OpenMP gave: a barrier waiting for more threads than
+      // run would never open.
+      const int t = omp_get_thread_num(), team = omp_get_num_threads();
+#pragma omp single
+      barrier.emplace(team);  // implicit barrier: every thread sees it
       for (int s : top_) {
         if (solve_shared(s)) {
-          forward_shared(s, y, gathered, t, threads, barrier);
+          forward_shared(s, y, gathered, t, team, *barrier);
         } else {
           if (t == 0) forward(s, y, nullptr, gathered);
-          barrier.wait();
+          barrier->wait();
         }
       }
       for (auto s = top_.rbegin(); s != top_.rend(); ++s) {
         if (solve_shared(*s)) {
-          backward_shared(*s, y, gathered, t, threads, barrier);
+          backward_shared(*s, y, gathered, t, team, *barrier);
         } else {
           if (t == 0) backward(*s, y, gathered);
-          barrier.wait();
+          barrier->wait();
         }
       }
     }
@@ -649,11 +653,9 @@ void SinglePrecisionFactor::solve(const double* r, double* x) {
   }
   if (threads > 1) {
 #pragma omp parallel num_threads(threads)
-    {
-      const int t = omp_get_thread_num();
-      for (auto range = thread_ranges_[t].rbegin(); range != thread_ranges_[t].rend(); ++range)
-        for (int s = range->second - 1; s >= range->first; --s) backward(s, y, gathered_[t].data());
-    }
+    for (int planned = omp_get_thread_num(); planned < threads; planned += omp_get_num_threads())
+      for (auto range = thread_ranges_[planned].rbegin(); range != thread_ranges_[planned].rend(); ++range)
+        for (int s = range->second - 1; s >= range->first; --s) backward(s, y, gathered_[planned].data());
   }
   for (std::size_t k = 0; k < n; ++k) x[perm_[k]] = static_cast<double>(y[k]);  // x = Pᵀ w
 }

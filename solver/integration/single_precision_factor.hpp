@@ -144,8 +144,9 @@ class SinglePrecisionFactor {
   std::vector<float> column_largest_;  // LU: per column, its largest entry in its diagonal block
   // Per supernode: the next of its rows to update an ancestor with, and its list successor.
   std::vector<int> next_row_, next_in_list_;
-  // Per thread: the subtrees given to it, as postorder ranges [first, last) of supernodes; top_:
-  // the other supernodes (ancestors of the subtrees), ascending.
+  // Per thread planned at analyse() (omp_get_max_threads()): the subtrees given to it, as
+  // postorder ranges [first, last) of supernodes (a smaller team takes them in turn); top_: the
+  // other supernodes (ancestors of the subtrees), ascending.
   std::vector<std::vector<std::pair<int, int>>> thread_ranges_;
   std::vector<int> top_;
   std::vector<char> above_row_;  // per column: it belongs to a top supernode (and there are subtrees)

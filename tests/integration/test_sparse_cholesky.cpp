@@ -3,9 +3,15 @@
 // explicitly symmetrised free block and the prescribed columns moved to the right-hand side;
 // an indefinite matrix is a failed factorisation; refactoring with new values stays exact. The
 // single-precision factorisation agrees with CHOLMOD's double one to single precision, on one
-// thread and with subtrees factored on two; in single precision an unsymmetric matrix is
-// factored by LU and solved exactly (to single precision).
+// thread and with subtrees factored on two to four (oversubscribed on a smaller machine); in
+// single precision an unsymmetric matrix is factored by LU and solved exactly (to single
+// precision); a team smaller than the factor planned for (a nested region here, OMP_THREAD_LIMIT
+// in tests/integration/CMakeLists.txt) gives the same solution. NewtonMatrixFactor, above them,
+// falls back to MUMPS LU where Cholesky fails and skips Cholesky for the next setups, and serves
+// a PETSc KSP as its preconditioner.
 #include <cmath>
+#include <stdexcept>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -14,6 +20,7 @@
 #include <petscksp.h>
 
 #include "integration/ksp_solver.hpp"
+#include "integration/newton_matrix_factor.hpp"
 #include "integration/petsc_arrays.hpp"
 #include "integration/petsc_session.hpp"
 #include "integration/sparse_cholesky.hpp"
@@ -164,10 +171,10 @@ TEST(SparseCholesky, SinglePrecisionSolveAgreesToSinglePrecision) {
   MatDestroy(&A);
 }
 
-// A 3-D matrix large enough for many supernodes and for root separators whose solves two threads
-// share: the single-precision factor (one thread, then two threads with concurrent subtrees)
-// against CHOLMOD's double-precision one.
-TEST(SparseCholesky, SinglePrecisionFactorOnOneAndTwoThreadsAgreesWithDouble) {
+// A 3-D matrix large enough for many supernodes and for root separators whose solves the threads
+// share: the single-precision factor (one thread, then two to four threads with concurrent
+// subtrees) against CHOLMOD's double-precision one.
+TEST(SparseCholesky, SinglePrecisionFactorOnOneToFourThreadsAgreesWithDouble) {
   constexpr PetscInt kCubeSide = 22;
   Mat A = cube_matrix(kCubeSide);
   const std::vector<char> prescribed = prescribe_rows(A);
@@ -177,7 +184,7 @@ TEST(SparseCholesky, SinglePrecisionFactorOnOneAndTwoThreadsAgreesWithDouble) {
   Vec reference = cholesky_solve(exact, b);
   const int threads_before = omp_get_max_threads();
   std::vector<Vec> solutions;
-  for (int threads : {1, 2}) {
+  for (int threads : {1, 2, 3, 4}) {
     omp_set_num_threads(threads);  // the subtrees are planned at the first factor()
     SparseCholesky single(prescribed, SparseCholesky::Precision::single_precision);
     ASSERT_TRUE(single.factor(A)) << single.last_failure();
@@ -193,8 +200,9 @@ TEST(SparseCholesky, SinglePrecisionFactorOnOneAndTwoThreadsAgreesWithDouble) {
     EXPECT_EQ(single.shared_solve_supernodes() > 0, threads > 1);
   }
   omp_set_num_threads(threads_before);
-  EXPECT_LT(relative_difference(solutions[1], solutions[0]), 1e-5);
-  for (Vec v : {b, reference, solutions[0], solutions[1]}) VecDestroy(&v);
+  for (Vec x : solutions) EXPECT_LT(relative_difference(x, solutions.front()), 1e-5);
+  for (Vec v : solutions) VecDestroy(&v);
+  for (Vec v : {b, reference}) VecDestroy(&v);
   MatDestroy(&A);
 }
 
@@ -230,17 +238,17 @@ Mat paired_cube_matrix(PetscInt side, double rotation, bool pairs_as_blocks = fa
 
 // In single precision an unsymmetric free block is factored by LU on the Cholesky structure:
 // the solve is J⁻¹ b itself (prescribed rows are identity rows), against MUMPS LU in double, on
-// one thread and with subtrees on two: a mildly unsymmetric matrix (cube_matrix with skew 0.6,
+// one thread and with subtrees on two to four: a mildly unsymmetric matrix (cube_matrix with skew 0.6,
 // diagonally dominant) and one that needs row exchanges (paired_cube_matrix, rotation 40). The
 // unsymmetric part changes the answer by far more than the tolerance, and a symmetric matrix
 // still takes the Cholesky path.
-TEST(SparseCholesky, SinglePrecisionLuOfUnsymmetricMatricesOnOneAndTwoThreadsAgreesWithMumps) {
+TEST(SparseCholesky, SinglePrecisionLuOfUnsymmetricMatricesOnOneToFourThreadsAgreesWithMumps) {
   constexpr PetscInt kCubeSide = 16;
   const int threads_before = omp_get_max_threads();
   const auto check_lu = [&](Mat A, Mat symmetric_part, const char* name) {
     const std::vector<char> prescribed = prescribe_rows(A);
     Vec b = right_hand_side(rows_of(A)), reference = lu_solve(A, b);
-    for (int threads : {1, 2}) {
+    for (int threads : {1, 2, 3, 4}) {
       omp_set_num_threads(threads);  // the subtrees are planned at the first factor()
       SparseCholesky single(prescribed, SparseCholesky::Precision::single_precision);
       ASSERT_TRUE(single.factor(A)) << single.last_failure();
@@ -270,6 +278,48 @@ TEST(SparseCholesky, SinglePrecisionLuOfUnsymmetricMatricesOnOneAndTwoThreadsAgr
   };
   check_lu(cube_matrix(kCubeSide, 0.6), cube_matrix(kCubeSide), "skew 0.6");
   check_lu(paired_cube_matrix(kCubeSide, 40.0), paired_cube_matrix(kCubeSide, 0.0), "rotation 40");
+}
+
+// OpenMP may give a team smaller than the one the factor planned its subtrees for (OMP_THREAD_LIMIT,
+// a nested parallel region, dynamic teams). Planned for three threads, then factored and solved
+// inside a parallel region where nested regions get one thread: every subtree is still factored
+// and the solves' barriers open (one sized for the plan would wait for ever), on an SPD matrix
+// (Cholesky) and an unsymmetric one (LU), against MUMPS LU.
+TEST(SparseCholesky, SinglePrecisionFactorOnAShorterTeamThanPlannedAgreesWithMumps) {
+  constexpr PetscInt kCubeSide = 16;
+  const int threads_before = omp_get_max_threads(), levels_before = omp_get_max_active_levels();
+  for (const double skew : {0.0, 0.6}) {
+    Mat A = cube_matrix(kCubeSide, skew);
+    const std::vector<char> prescribed = prescribe_rows(A);
+    Vec b = right_hand_side(rows_of(A)), reference = lu_solve(A, b), x = nullptr;
+    petsc_check(VecDuplicate(b, &x), "VecDuplicate");
+    omp_set_num_threads(3);
+    omp_set_max_active_levels(1);
+    SparseCholesky single(prescribed, SparseCholesky::Precision::single_precision);
+    int team = 0;
+    bool factored = false;
+#pragma omp parallel num_threads(2)
+    if (omp_get_thread_num() == 0) {
+#pragma omp parallel num_threads(3)
+#pragma omp single
+      team = omp_get_num_threads();
+      factored = single.factor(A);
+      if (factored) single.solve(b, x);
+    }
+    omp_set_max_active_levels(levels_before);
+    omp_set_num_threads(threads_before);
+    ASSERT_LT(team, 3) << "no shorter team provoked";
+    ASSERT_TRUE(factored) << single.last_failure();
+    const double error = relative_difference(x, reference);
+    std::printf("single precision, skew %.1f, planned for 3 threads, a team of %d: %d concurrent subtrees, "
+                "|x - x_MUMPS| / |x_MUMPS| = %.2e\n",
+                skew, team, single.concurrent_subtrees(), error);
+    EXPECT_GT(single.concurrent_subtrees(), 1);  // the plan was for several threads
+    EXPECT_EQ(single.lu_factorizations(), skew > 0.0 ? 1 : 0);
+    EXPECT_LT(error, 1e-5);
+    for (Vec v : {b, reference, x}) VecDestroy(&v);
+    MatDestroy(&A);
+  }
 }
 
 // A matrix with a block size is ordered by nested dissection of its node graph (every 7th
@@ -375,6 +425,100 @@ TEST(SparseCholesky, UnsymmetricPatternIsRejected) {
   SparseCholesky cholesky(std::vector<char>(2, 0));
   EXPECT_THROW(cholesky.factor(A), std::invalid_argument);
   MatDestroy(&A);
+}
+
+// NewtonMatrixFactor's "cholesky" (double precision): an SPD matrix is factored by Cholesky, an
+// indefinite one by MUMPS LU after the failed Cholesky attempt, both solved exactly (against
+// MUMPS); the three setups after the indefinite one go straight to LU, the fourth tries Cholesky
+// again.
+TEST(NewtonMatrixFactor, IndefiniteMatrixFallsBackToLuAndSkipsCholeskyForThreeSetups) {
+  Mat spd = grid_matrix(9.0, 0.0), indefinite = grid_matrix(1.0, 0.0);
+  const std::vector<char> prescribed = prescribe_rows(spd);
+  prescribe_rows(indefinite);
+  NewtonMatrixFactor factor(prescribed, {.method = "cholesky"});
+  Vec b = right_hand_side();
+  const auto solve_error = [&](Mat A) {
+    Vec x = nullptr, reference = lu_solve(A, b);
+    petsc_check(VecDuplicate(b, &x), "VecDuplicate");
+    EXPECT_TRUE(factor.solve(b, x));
+    const double error = relative_difference(x, reference);
+    for (Vec v : {x, reference}) VecDestroy(&v);
+    return error;
+  };
+  const auto expect_counts = [&](long cholesky, long ksp) {
+    EXPECT_EQ(factor.factorisations().cholesky, cholesky);
+    EXPECT_EQ(factor.factorisations().lu, 0);
+    EXPECT_EQ(factor.factorisations().ksp, ksp);
+  };
+  ASSERT_TRUE(factor.factor(spd));
+  EXPECT_LT(solve_error(spd), 1e-12);
+  expect_counts(1, 0);
+  ASSERT_TRUE(factor.factor(indefinite));
+  EXPECT_LT(solve_error(indefinite), 1e-12);
+  expect_counts(2, 1);  // the failed attempt counts
+  for (int setup = 0; setup < 3; ++setup) ASSERT_TRUE(factor.factor(spd));
+  EXPECT_LT(solve_error(spd), 1e-12);
+  expect_counts(2, 4);
+  ASSERT_TRUE(factor.factor(spd));
+  EXPECT_LT(solve_error(spd), 1e-12);
+  expect_counts(3, 4);
+  EXPECT_THROW(NewtonMatrixFactor(prescribed, {.method = "pardiso"}), std::invalid_argument);
+  VecDestroy(&b);
+  MatDestroy(&indefinite);
+  MatDestroy(&spd);
+}
+
+// Behind PETSc's preconditioner interface (attach_to): flexible GMRES on an unsymmetric matrix,
+// preconditioned by the single-precision LU, reaches a relative residual of 1e-12 in a few
+// iterations and MUMPS's solution; a singular matrix, on which Cholesky and then MUMPS fail, is a
+// failed preconditioner, which the KSP reports instead of iterating. Flexible GMRES because
+// a single-precision solve is linear only to its round-off: plain GMRES's left-preconditioned
+// residual estimate then reaches 1e-12 while the error stays at 1e-7.
+TEST(NewtonMatrixFactor, AsAShellPreconditionerOfAPetscKsp) {
+  const auto gmres = [](NewtonMatrixFactor& factor, Mat A, Vec b, Vec x) {
+    KSP ksp = nullptr;
+    PC pc = nullptr;
+    petsc_check(KSPCreate(PETSC_COMM_SELF, &ksp), "KSPCreate");
+    petsc_check(KSPSetType(ksp, KSPFGMRES), "KSPSetType");
+    petsc_check(KSPGetPC(ksp, &pc), "KSPGetPC");
+    factor.attach_to(pc);
+    petsc_check(KSPSetTolerances(ksp, 1e-12, PETSC_DEFAULT, PETSC_DEFAULT, 50), "KSPSetTolerances");
+    petsc_check(KSPSetOperators(ksp, A, A), "KSPSetOperators");
+    petsc_check(KSPSolve(ksp, b, x), "KSPSolve");
+    KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
+    PetscInt iterations = 0;
+    petsc_check(KSPGetConvergedReason(ksp, &reason), "KSPGetConvergedReason");
+    petsc_check(KSPGetIterationNumber(ksp, &iterations), "KSPGetIterationNumber");
+    KSPDestroy(&ksp);
+    return std::make_pair(reason, iterations);
+  };
+  Mat A = cube_matrix(16, 0.6);
+  const std::vector<char> prescribed = prescribe_rows(A);
+  Vec b = right_hand_side(rows_of(A)), reference = lu_solve(A, b), x = nullptr;
+  petsc_check(VecDuplicate(b, &x), "VecDuplicate");
+  NewtonMatrixFactor single(prescribed, {.method = "cholesky", .preconditioner_only = true});
+  const auto [reason, iterations] = gmres(single, A, b, x);
+  const double error = relative_difference(x, reference);
+  std::printf("FGMRES with the single-precision LU as a shell preconditioner: %ld iterations, |x - x_MUMPS| / "
+              "|x_MUMPS| = %.2e\n", static_cast<long>(iterations), error);
+  EXPECT_GT(reason, 0);
+  EXPECT_LE(iterations, 5);
+  EXPECT_LT(error, 1e-10);
+  EXPECT_EQ(single.factorisations().lu, 1);
+  for (Vec v : {b, reference, x}) VecDestroy(&v);
+  MatDestroy(&A);
+
+  Mat singular = nullptr;  // diag(1, 0, 1)
+  petsc_check(MatCreateSeqAIJ(PETSC_COMM_SELF, 3, 3, 1, nullptr, &singular), "MatCreateSeqAIJ");
+  for (PetscInt row = 0; row < 3; ++row)
+    petsc_check(MatSetValue(singular, row, row, row == 1 ? 0.0 : 1.0, INSERT_VALUES), "MatSetValue");
+  assemble(singular);
+  petsc_check(MatCreateVecs(singular, &x, &b), "MatCreateVecs");
+  petsc_check(VecSet(b, 1.0), "VecSet");
+  NewtonMatrixFactor exact(std::vector<char>(3, 0), {.method = "cholesky"});
+  EXPECT_EQ(gmres(exact, singular, b, x).first, KSP_DIVERGED_PC_FAILED);
+  for (Vec v : {b, x}) VecDestroy(&v);
+  MatDestroy(&singular);
 }
 
 }  // namespace

@@ -39,7 +39,7 @@ double displacement_norm(const MechanicsSystem& system, Vec v) {
 
 // advance() is a full Newton iteration on the system's solves, so they must be exact: the
 // modified-Newton setting (the default Krylov one makes them single-precision preconditioner
-// solves, sparse_cholesky.hpp).
+// solves, newton_matrix_factor.hpp).
 Problem::Problem(const std::string& toml, const std::vector<std::string>& overrides)
     : input(Case::parse(toml, "test", overrides)),
       scene(meshed(input)),

@@ -71,7 +71,7 @@ elements::Formulation formulation_from_case(const Case& input) {
 
 MechanicsSystem::MechanicsSystem(const TetMesh& mesh, const material::Material& material,
                                  elements::Formulation formulation, DirichletConditions conditions,
-                                 const KspOptions& solver_options)
+                                 const NewtonMatrixOptions& solver_options)
     : mesh_(mesh), dofs_(tissue_dof_map(mesh)), conditions_(std::move(conditions)), kernel_(material, formulation) {
   const int n = mesh.nodes_per_tet;
   std::vector<double> coordinates(3 * n);
@@ -85,14 +85,22 @@ MechanicsSystem::MechanicsSystem(const TetMesh& mesh, const material::Material& 
   viscous_per_element_ = static_cast<PetscInt>(points) * kernel_.prony_terms() * elements::kVoigt;
   prescribed_.assign(dofs_.dof_count, 0);
   for (const auto& d : conditions_.dofs) prescribed_[d.dof] = 1;
+  create_newton_matrix();
+  symmetric_preconditioner_ = solver_options.symmetric_preconditioner;
+  newton_factor_ = std::make_unique<NewtonMatrixFactor>(prescribed_, solver_options);
+  check(VecCreateSeq(PETSC_COMM_SELF, dofs_.dof_count, &rhs_), "VecCreateSeq");
+  check(VecDuplicate(rhs_, &solution_), "VecDuplicate");
+}
 
+void MechanicsSystem::create_newton_matrix() {
+  const int n = mesh_.nodes_per_tet;
   // Block (node) sparsity: nodes sharing a tissue tet, sorted per block row.
   const PetscInt block_rows = dofs_.dof_count / 3;
   std::vector<std::vector<PetscInt>> neighbours(block_rows);
   for (std::size_t e : dofs_.tissue_tets)
     for (int a = 0; a < n; ++a)
       for (int b = 0; b < n; ++b)
-        neighbours[dofs_.node_dof[mesh.tet(e)[a]] / 3].push_back(dofs_.node_dof[mesh.tet(e)[b]] / 3);
+        neighbours[dofs_.node_dof[mesh_.tet(e)[a]] / 3].push_back(dofs_.node_dof[mesh_.tet(e)[b]] / 3);
   for (auto& list : neighbours) {
     std::sort(list.begin(), list.end());
     list.erase(std::unique(list.begin(), list.end()), list.end());
@@ -123,7 +131,7 @@ MechanicsSystem::MechanicsSystem(const TetMesh& mesh, const material::Material& 
   // three columns of a block follow it.
   value_positions_.resize(dofs_.tissue_tets.size() * static_cast<std::size_t>(3 * n * n));
   for (std::size_t k = 0; k < dofs_.tissue_tets.size(); ++k) {
-    const int* nodes = mesh.tet(dofs_.tissue_tets[k]);
+    const int* nodes = mesh_.tet(dofs_.tissue_tets[k]);
     for (int a = 0; a < n; ++a) {
       const PetscInt block = dofs_.node_dof[nodes[a]] / 3;
       const auto& list = neighbours[block];
@@ -133,28 +141,6 @@ MechanicsSystem::MechanicsSystem(const TetMesh& mesh, const material::Material& 
       }
     }
   }
-
-  // Near-incompressible tissue (K/mu up to 1e6) delays many pivots in MUMPS; its default 20 %
-  // workspace margin then runs out (INFOG(1) = -9). Give 100 % unless the user chose a value.
-  PetscBool workspace_given = PETSC_FALSE;
-  check(PetscOptionsHasName(nullptr, solver_options.prefix.c_str(), "-mat_mumps_icntl_14", &workspace_given),
-        "PetscOptionsHasName");
-  if (!workspace_given)
-    check(PetscOptionsSetValue(nullptr, ("-" + solver_options.prefix + "mat_mumps_icntl_14").c_str(), "100"),
-          "PetscOptionsSetValue");
-  symmetric_preconditioner_ = solver_options.symmetric_preconditioner;
-  KspOptions ksp_options = solver_options;
-  if (solver_options.method == "cholmod") {
-    cholesky_ = std::make_unique<SparseCholesky>(
-        prescribed_,
-        solver_options.preconditioner_only ? SparseCholesky::Precision::single_precision
-                                           : SparseCholesky::Precision::double_precision,
-        symmetric_preconditioner_ ? SparseCholesky::Unsymmetric::symmetric_part : SparseCholesky::Unsymmetric::lu);
-    ksp_options.method = "mumps";
-  }
-  solver_ = std::make_unique<KspSolver>(PETSC_COMM_SELF, ksp_options);
-  check(VecCreateSeq(PETSC_COMM_SELF, dofs_.dof_count, &rhs_), "VecCreateSeq");
-  check(VecDuplicate(rhs_, &solution_), "VecDuplicate");
 }
 
 MechanicsSystem::~MechanicsSystem() {
@@ -166,7 +152,8 @@ MechanicsSystem::~MechanicsSystem() {
 std::unique_ptr<MechanicsSystem> MechanicsSystem::from_case(const Case& input, const TetMesh& mesh) {
   const DofMap map = tissue_dof_map(mesh);
   return std::make_unique<MechanicsSystem>(mesh, material::material_from_case(input), formulation_from_case(input),
-                                           scene_conditions(input, mesh, map), ksp_options_from_case(input));
+                                           scene_conditions(input, mesh, map),
+                                           newton_matrix_options_from_case(input));
 }
 
 void MechanicsSystem::initial_state(double t0, Vec y, Vec ydot) {
@@ -248,7 +235,7 @@ DaeStatus MechanicsSystem::residual(double t, Vec y, Vec ydot, Vec F) {
 }
 
 void MechanicsSystem::accept_step(double t, Vec y, Vec ydot) {
-  setups_since_accepted_step_ = 0;
+  newton_factor_->step_accepted();
   if (surface_loads_.empty()) return;
   ReadArray state(y), rate(ydot);
   for (const auto& load : surface_loads_) load->accept_step(t, state.data(), rate.data(), dofs_);
@@ -257,71 +244,7 @@ void MechanicsSystem::accept_step(double t, Vec y, Vec ydot) {
 DaeStatus MechanicsSystem::setup_jacobian(double t, Vec y, Vec ydot, double cj) {
   return guarded([&] {
     ReadArray state(y), rate(ydot);
-    const int n = mesh_.nodes_per_tet, terms = kernel_.prony_terms();
-    const double scale = material::condensed_fraction(kernel_.prony(), cj);
-    if (terms) condensation_.resize(geometry_.size());
-    if (pressure_unknowns()) {
-      pressure_gradient_.resize(geometry_.size());
-      pressure_stiffness_.resize(geometry_.size());
-    }
-    check(MatZeroEntries(jacobian_), "MatZeroEntries");
-    std::atomic<bool> inverted = false;
-    {
-      PetscScalar* values = nullptr;
-      check(MatSeqAIJGetArray(jacobian_, &values), "MatSeqAIJGetArray");
-      // A batch of element matrices is evaluated on the threads, then added by the threads each
-      // owning a range of rows, element by element: every entry sums its elements in mesh order,
-      // so the matrix does not depend on the thread count or timing (atomic adds would).
-      constexpr std::size_t kBatch = 1024;
-      std::vector<elements::ElementResult> batch(kBatch);
-      const auto rows = static_cast<std::size_t>(displacement_dofs());
-      for (std::size_t first = 0; first < geometry_.size() && !inverted; first += kBatch) {
-        const std::size_t count = std::min(kBatch, geometry_.size() - first);
-#pragma omp parallel
-        {
-#pragma omp for schedule(static)
-          for (std::size_t e = 0; e < count; ++e) {
-            const std::size_t k = first + e;
-            std::array<double, elements::kMaxElementDofs> u_e{};
-            gather_displacement(state.data(), k, u_e.data());
-            const double* q = terms ? state.data() + viscous_offset(k) : nullptr;
-            batch[e] = kernel_.evaluate(geometry_[k], u_e.data(), q, true, scale, element_pressure(state.data(), k));
-            if (batch[e].inverted) inverted = true;
-            if (pressure_unknowns()) {
-              pressure_gradient_[k] = batch[e].volume_gradient;
-              pressure_stiffness_[k] = batch[e].pressure_stiffness;
-            }
-          }  // implicit barrier: the batch is complete
-          const auto threads = static_cast<std::size_t>(omp_get_num_threads());
-          const auto thread = static_cast<std::size_t>(omp_get_thread_num());
-          const std::size_t row_begin = rows * thread / threads, row_end = rows * (thread + 1) / threads;
-          for (std::size_t e = 0; e < count && !inverted; ++e) {
-            const std::size_t k = first + e;
-            const int* nodes = mesh_.tet(dofs_.tissue_tets[k]);
-            const PetscInt* positions = value_positions_.data() + k * 3 * n * n;
-            for (int a = 0; a < n; ++a)
-              for (int i = 0; i < 3; ++i) {
-                const auto row_index = static_cast<std::size_t>(dofs_.node_dof[nodes[a]] + i);
-                if (row_index < row_begin || row_index >= row_end) continue;
-                const double* row = batch[e].stiffness.data() + static_cast<std::size_t>(3 * a + i) * 3 * n;
-                for (int b = 0; b < n; ++b) {
-                  PetscScalar* target = values + positions[(a * n + b) * 3 + i];
-                  for (int j = 0; j < 3; ++j) target[j] += row[3 * b + j];
-                }
-              }
-          }
-#pragma omp for schedule(static)
-          for (std::size_t e = 0; e < count; ++e) {
-            const elements::ElementGeometry& geometry = geometry_[first + e];
-            if (terms && !inverted)
-              for (int p = 0; p < geometry.points; ++p)
-                condensation_[first + e].set_point(p, batch[e].points[p], geometry.gradient_at(p), n,
-                                                   geometry.weight[p]);
-          }
-        }
-      }
-      check(MatSeqAIJRestoreArray(jacobian_, &values), "MatSeqAIJRestoreArray");
-    }
+    const bool inverted = !assemble_condensed_matrix(state.data(), cj);
     const NewtonMatrix form = symmetric_preconditioner_ ? NewtonMatrix::symmetric_preconditioner : NewtonMatrix::exact;
     if (!inverted)
       for (const auto& load : surface_loads_)
@@ -337,21 +260,79 @@ DaeStatus MechanicsSystem::setup_jacobian(double t, Vec y, Vec ydot, double cj) 
     for (const auto& d : conditions_.dofs) rows.push_back(d.dof);
     check(MatZeroRows(jacobian_, static_cast<PetscInt>(rows.size()), rows.data(), 1.0, nullptr, nullptr),
           "MatZeroRows");
-    // A symmetric part found indefinite (sliding friction) usually stays so for the next
-    // setups: skip Cholesky for a few of them rather than pay a failed attempt each time.
-    const bool struggling = ++setups_since_accepted_step_ > kSinglePrecisionSetupsWithoutStep;
-    const bool try_cholesky =
-        cholesky_ && cholesky_skips_left_ == 0 && !(struggling && cholesky_->single_precision());
-    if (cholesky_skips_left_ > 0) --cholesky_skips_left_;
-    cholesky_factored_ = try_cholesky && cholesky_->factor(jacobian_);
-    if (try_cholesky && !cholesky_factored_) cholesky_skips_left_ = kCholeskySkipsAfterIndefinite;
-    if (!cholesky_factored_ && !solver_->factor(jacobian_)) {
+    if (!newton_factor_->factor(jacobian_)) {
       ++rejections_.failed_factorisations;
       return DaeStatus::recoverable;
     }
     cj_ = cj;
     return DaeStatus::ok;
   });
+}
+
+bool MechanicsSystem::assemble_condensed_matrix(const double* state, double cj) {
+  const int n = mesh_.nodes_per_tet, terms = kernel_.prony_terms();
+  const double scale = material::condensed_fraction(kernel_.prony(), cj);
+  if (terms) condensation_.resize(geometry_.size());
+  if (pressure_unknowns()) {
+    pressure_gradient_.resize(geometry_.size());
+    pressure_stiffness_.resize(geometry_.size());
+  }
+  check(MatZeroEntries(jacobian_), "MatZeroEntries");
+  std::atomic<bool> inverted = false;
+  PetscScalar* values = nullptr;
+  check(MatSeqAIJGetArray(jacobian_, &values), "MatSeqAIJGetArray");
+  // A batch of element matrices is evaluated on the threads, then added by the threads each
+  // owning a range of rows, element by element: every entry sums its elements in mesh order,
+  // so the matrix does not depend on the thread count or timing (atomic adds would).
+  constexpr std::size_t kBatch = 1024;
+  std::vector<elements::ElementResult> batch(kBatch);
+  const auto rows = static_cast<std::size_t>(displacement_dofs());
+  for (std::size_t first = 0; first < geometry_.size() && !inverted; first += kBatch) {
+    const std::size_t count = std::min(kBatch, geometry_.size() - first);
+#pragma omp parallel
+    {
+#pragma omp for schedule(static)
+      for (std::size_t e = 0; e < count; ++e) {
+        const std::size_t k = first + e;
+        std::array<double, elements::kMaxElementDofs> u_e{};
+        gather_displacement(state, k, u_e.data());
+        const double* q = terms ? state + viscous_offset(k) : nullptr;
+        batch[e] = kernel_.evaluate(geometry_[k], u_e.data(), q, true, scale, element_pressure(state, k));
+        if (batch[e].inverted) inverted = true;
+        if (pressure_unknowns()) {
+          pressure_gradient_[k] = batch[e].volume_gradient;
+          pressure_stiffness_[k] = batch[e].pressure_stiffness;
+        }
+      }  // implicit barrier: the batch is complete
+      const auto threads = static_cast<std::size_t>(omp_get_num_threads());
+      const auto thread = static_cast<std::size_t>(omp_get_thread_num());
+      const std::size_t row_begin = rows * thread / threads, row_end = rows * (thread + 1) / threads;
+      for (std::size_t e = 0; e < count && !inverted; ++e) {
+        const std::size_t k = first + e;
+        const int* nodes = mesh_.tet(dofs_.tissue_tets[k]);
+        const PetscInt* positions = value_positions_.data() + k * 3 * n * n;
+        for (int a = 0; a < n; ++a)
+          for (int i = 0; i < 3; ++i) {
+            const auto row_index = static_cast<std::size_t>(dofs_.node_dof[nodes[a]] + i);
+            if (row_index < row_begin || row_index >= row_end) continue;
+            const double* row = batch[e].stiffness.data() + static_cast<std::size_t>(3 * a + i) * 3 * n;
+            for (int b = 0; b < n; ++b) {
+              PetscScalar* target = values + positions[(a * n + b) * 3 + i];
+              for (int j = 0; j < 3; ++j) target[j] += row[3 * b + j];
+            }
+          }
+      }
+#pragma omp for schedule(static)
+      for (std::size_t e = 0; e < count; ++e) {
+        const elements::ElementGeometry& geometry = geometry_[first + e];
+        if (terms && !inverted)
+          for (int p = 0; p < geometry.points; ++p)
+            condensation_[first + e].set_point(p, batch[e].points[p], geometry.gradient_at(p), n, geometry.weight[p]);
+      }
+    }
+  }
+  check(MatSeqAIJRestoreArray(jacobian_, &values), "MatSeqAIJRestoreArray");
+  return !inverted;
 }
 
 bool MechanicsSystem::newton_matrix_serves(double factored_cj, double cj) const {
@@ -409,9 +390,7 @@ DaeStatus MechanicsSystem::solve_jacobian(Vec b, Vec x) {
           }
       });
     }
-    if (cholesky_factored_)
-      cholesky_->solve(rhs_, solution_);
-    else if (!solver_->solve(rhs_, solution_)) {
+    if (!newton_factor_->solve(rhs_, solution_)) {
       ++rejections_.failed_solves;
       return DaeStatus::recoverable;
     }
@@ -442,12 +421,6 @@ DaeStatus MechanicsSystem::solve_jacobian(Vec b, Vec x) {
     }
     return DaeStatus::ok;
   });
-}
-
-MechanicsSystem::Factorisations MechanicsSystem::factorisations() const {
-  if (!cholesky_) return {0, 0, solver_->factorizations()};
-  return {cholesky_->factorizations() - cholesky_->lu_factorizations(), cholesky_->lu_factorizations(),
-          solver_->factorizations()};
 }
 
 MechanicsSystem::Resultants MechanicsSystem::resultants(Vec y, const std::vector<std::string>& surfaces) const {

@@ -30,10 +30,9 @@
 //     = K with D⁰ scaled by 1 - Σ_i g_i/(1 + c_j τ_i) and the volumetric part
 //       p_e ∂²v_e/∂u² + (U''/V_e) a_e a_eᵀ (tet_element.hpp, with the state's p_e),
 // assembles K̂ into a PETSc AIJ matrix of block size 3 (prescribed rows replaced by identity
-// rows) and factors it: integration.linear_solver = "cholmod" (the default) factors the symmetric
-// part of the free block with integration/SparseCholesky and falls back to MUMPS LU for that
-// setup when it is not positive definite; "mumps" and the Krylov methods go through
-// integration/KspSolver (-nf_ksp_* options refine them). solve_jacobian back-substitutes:
+// rows) and hands it to integration/NewtonMatrixFactor, which chooses how to factor it
+// (integration.linear_solver and its fallbacks: newton_matrix_factor.hpp). solve_jacobian
+// back-substitutes:
 //   K̂ x_u = b_u + Σ_q w_q B_qᵀ Σ_i b_Qi / (c_j + 1/τ_i) - Σ_e a_e b_p,e     (free rows only),
 //   x_Qi = (b_Qi + (g_i/τ_i) D⁰_q B_q x_u) / (c_j + 1/τ_i),
 //   x_p,e = b_p,e + (U''/V_e) a_eᵀ x_u.
@@ -49,8 +48,7 @@
 #include <petscksp.h>
 
 #include "integration/dae_system.hpp"
-#include "integration/ksp_solver.hpp"
-#include "integration/sparse_cholesky.hpp"
+#include "integration/newton_matrix_factor.hpp"
 #include "model/tet_mesh.hpp"
 #include "physics/elements/tet_element.hpp"
 #include "physics/material/material.hpp"
@@ -69,7 +67,7 @@ class MechanicsSystem final : public DaeSystem {
   // `mesh` must outlive the system. PETSc must be initialised. Throws std::runtime_error on
   // PETSc failures and for inverted reference elements.
   MechanicsSystem(const TetMesh& mesh, const material::Material& material, elements::Formulation formulation,
-                  DirichletConditions conditions, const KspOptions& solver_options = {});
+                  DirichletConditions conditions, const NewtonMatrixOptions& solver_options = {});
   ~MechanicsSystem() override;
   MechanicsSystem(const MechanicsSystem&) = delete;
   MechanicsSystem& operator=(const MechanicsSystem&) = delete;
@@ -93,7 +91,7 @@ class MechanicsSystem final : public DaeSystem {
   DaeStatus setup_jacobian(double t, Vec y, Vec ydot, double cj) override;
   void accept_step(double t, Vec y, Vec ydot) override;
   DaeStatus solve_jacobian(Vec b, Vec x) override;
-  long linear_iterations() const override { return solver_->iterations(); }
+  long linear_iterations() const override { return newton_factor_->iterations(); }
   // With no rate-dependent surface load, c_j enters the Newton matrix only through the condensed
   // Prony terms, 1 - Σ g_i/(1 + c_j τ_i) (material::condensed_fraction): it serves if that factor changes by
   // less than 1e-3.
@@ -106,16 +104,9 @@ class MechanicsSystem final : public DaeSystem {
     long failed_solves = 0;          // ... or solve with it
   };
   const Rejections& rejections() const { return rejections_; }
-  // How the Newton matrices were factored: by sparse Cholesky, by the single-precision LU on
-  // its structure (unsymmetric matrices where the factor preconditions GMRES), and by the KSP
-  // solver (all of them for "mumps" and the Krylov methods; with "cholmod", the setups that
-  // these could not factor).
-  struct Factorisations {
-    long cholesky = 0;
-    long lu = 0;
-    long ksp = 0;
-  };
-  Factorisations factorisations() const;
+  // How the Newton matrices were factored (NewtonMatrixFactor::Factorisations).
+  using Factorisations = NewtonMatrixFactor::Factorisations;
+  Factorisations factorisations() const { return newton_factor_->factorisations(); }
 
   // Adds a surface's terms (contact, tractions; surface_load.hpp) to residual and Jacobian.
   void add_surface_load(std::shared_ptr<SurfaceLoad> load) { surface_loads_.push_back(std::move(load)); }
@@ -155,6 +146,11 @@ class MechanicsSystem final : public DaeSystem {
   // F_Q. Returns false for an inverted element.
   bool assemble_internal(const double* y, const double* ydot, double* f_u, double* f_q, double* energy) const;
   void gather_displacement(const double* y, std::size_t tissue_element, double* u_e) const;
+  // jacobian_ with its fixed pattern (value_positions_ too), at construction.
+  void create_newton_matrix();
+  // K̂ at the state y and c_j into jacobian_'s values, before surface loads and prescribed rows;
+  // keeps the condensation's data for solve_jacobian. Returns false for an inverted element.
+  bool assemble_condensed_matrix(const double* y, double cj);
   // The mixed element keeps its pressures in the state.
   bool pressure_unknowns() const { return kernel_.formulation() == elements::Formulation::mean_dilatation; }
 
@@ -180,20 +176,8 @@ class MechanicsSystem final : public DaeSystem {
   // Per tissue element, a, i, b: where entry (3 r_a + i, 3 c_b) of its blocks sits in the
   // jacobian_'s CSR values (the pattern is fixed at construction).
   std::vector<PetscInt> value_positions_;
-  std::unique_ptr<SparseCholesky> cholesky_;  // integration.linear_solver = "cholmod" only
-  std::unique_ptr<KspSolver> solver_;         // the method, or LU when the Cholesky one fails
-  bool cholesky_factored_ = false;            // which of the two holds the last factorisation
-  static constexpr int kCholeskySkipsAfterIndefinite = 3;
-  int cholesky_skips_left_ = 0;  // setups that go straight to LU after an indefinite one
-  // From the third setup without an accepted step in between (IDA's Newton failing with fresh
-  // matrices, at stick/slip events with steps cut to 1e-10 s), a single-precision factor gives
-  // way to MUMPS's double-precision LU until a step is accepted: at such steps c_j = 1/h puts
-  // entries of 1e10 beside the tissue's, beyond what single precision resolves. The default case
-  // never triggers it; the study design that needed it: docs/speed.md, "Measurements formerly in
-  // code comments".
-  static constexpr int kSinglePrecisionSetupsWithoutStep = 2;
-  int setups_since_accepted_step_ = 0;
-  // KspOptions::symmetric_preconditioner (Krylov Newton): setups assemble
+  std::unique_ptr<NewtonMatrixFactor> newton_factor_;  // factors jacobian_ at each setup, solves with it
+  // NewtonMatrixOptions::symmetric_preconditioner (Krylov Newton): setups assemble
   // NewtonMatrix::symmetric_preconditioner, positive definite and cheap to factor and solve.
   bool symmetric_preconditioner_ = false;
   Vec rhs_ = nullptr, solution_ = nullptr;
