@@ -371,4 +371,18 @@ nlohmann::json Case::to_json() const {
   return out;
 }
 
+nlohmann::json Case::with_current_choice_names(nlohmann::json echoed) {
+  if (!echoed.is_object()) return echoed;
+  for (const KeySpec& spec : case_schema()) {
+    if (spec.aliases.empty()) continue;
+    std::string pointer = "/" + spec.key;
+    std::replace(pointer.begin(), pointer.end(), '.', '/');
+    const nlohmann::json::json_pointer at(pointer);
+    if (!echoed.contains(at) || !echoed[at].is_string()) continue;
+    for (const auto& [former, current] : spec.aliases)
+      if (echoed[at] == former) echoed[at] = current;
+  }
+  return echoed;
+}
+
 }  // namespace needlefem

@@ -71,6 +71,10 @@ class Case {
   // The fully resolved case, echoed into every output.
   std::string to_toml() const;
   nlohmann::json to_json() const;
+  // A case echoed by an earlier version (a summary.json's "case") with each choice it names by a
+  // former name (KeySpec::aliases) under its current one: a result made before a choice was
+  // renamed still matches its case.
+  static nlohmann::json with_current_choice_names(nlohmann::json echoed);
 
   // A CaseError message "ORIGIN: key 'KEY': REASON" for cross-key rules checked elsewhere.
   CaseError error(const std::string& key, const std::string& reason) const;

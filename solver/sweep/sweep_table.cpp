@@ -16,6 +16,7 @@
 
 #include <fmt/format.h>
 
+#include "case/case.hpp"
 #include "case/schema.hpp"
 #include "io_errors/io_errors.hpp"
 
@@ -310,7 +311,8 @@ PointRecord read_point(const DesignPoint& point, const fs::path& out_dir) {
   std::ifstream in(point_directory(out_dir, point) / "summary.json");
   if (!in) return {"pending", nullptr, ""};
   const nlohmann::json summary = nlohmann::json::parse(in, nullptr, false);
-  if (summary.is_discarded() || !summary.is_object() || summary.value("case", nlohmann::json()) != point.resolved)
+  if (summary.is_discarded() || !summary.is_object() ||
+      Case::with_current_choice_names(summary.value("case", nlohmann::json())) != point.resolved)
     return {"pending", nullptr, ""};
   const std::string status = summary.value("status", "");
   if (status == "completed") return {status, summary, ""};
