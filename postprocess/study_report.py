@@ -267,7 +267,7 @@ table { border-collapse: collapse; font-size: 0.85em; }
 th, td { border: 1px solid #ccc; padding: 0.25em 0.5em; text-align: left; vertical-align: top; }
 th { background: #f0f0f0; }
 td.pass { background: #dff0d8; } td.fail { background: #f2dede; } td.undecided { background: #fcf8e3; }
-.note { color: #555; font-size: 0.85em; } .warning { color: #b00; }
+.note { color: #555; font-size: 0.85em; } td.note { min-width: 18em; } .warning { color: #b00; }
 figure { display: inline-block; margin: 0.5em; vertical-align: top; width: 640px; max-width: 100%; }
 figure img { width: 100%; border: 1px solid #ddd; } figure.wide { width: 1300px; } figcaption { font-size: 0.85em; max-width: 900px; }
 pre { background: #f7f7f7; padding: 0.5em; font-size: 0.8em; overflow-x: auto; }
