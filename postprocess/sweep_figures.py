@@ -381,7 +381,7 @@ def safety_steering(sweep, png, grid=None):
     points = [i for i in sweep.indices(grid) if not math.isnan(sweep.table.get("needle_max_lateral_force_n",
                                                                                    [math.nan] * sweep.rows)[i])]
     fig, axes = plt.subplots(1, len(SAFETY_LIMITS), figsize=(5.2 * len(SAFETY_LIMITS), 4.6), sharey=False)
-    colours = plt.get_cmap("tab20")
+    styles = line_styles(len(points))
     for ax, (name, label) in zip(axes, SAFETY_LIMITS):
         for n, i in enumerate(points):
             summary = sweep.summary(i)
@@ -392,8 +392,9 @@ def safety_steering(sweep, png, grid=None):
             lateral_mn = sweep.table["needle_max_lateral_force_n"][i] * 1e3
             margin = 1 - entry["critical_distance"]["value"] / limit
             point_margin = 1 - entry["point_max"]["value"] / limit
-            colour = colours(n % 20)
-            ax.plot(lateral_mn, margin, "o", color=colour, mfc=colour if entry["verdict"] == "pass" else "none",
+            colour = styles[n]["color"]
+            ax.plot(lateral_mn, margin, styles[n]["marker"], color=colour,
+                    mfc=colour if entry["verdict"] == "pass" else "none",
                     label=f"{tip_label(tip_of(summary))}, {motion_label(motion_of(summary))}")
             ax.plot(lateral_mn, point_margin, "x", color=colour, alpha=0.35)
         ax.axhline(0.0, color="k", lw=0.8)
@@ -407,16 +408,13 @@ def safety_steering(sweep, png, grid=None):
     if handles:
         fig.legend(handles, labels, loc="lower center", ncol=min(4, len(labels)), fontsize=7, frameon=False)
         fig.subplots_adjust(bottom=0.12 + 0.035 * math.ceil(len(labels) / 4))
-    fig.suptitle("Safety beside steering: o critical-distance margin (filled = pass), x point-maximum margin",
+    fig.suptitle("Safety beside steering: marker per design = critical-distance margin (filled = pass), "
+                 "faint x = point-maximum margin",
                  fontsize=10)
     warning = sweep.coarse_mesh_warning(points)
     if warning:
         fig.text(0.5, 1.0, textwrap.fill(warning, 150), fontsize=10, ha="center", va="bottom", color="#d62728")
-    png = pathlib.Path(png)
-    png.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(png, dpi=130, bbox_inches="tight")
-    plt.close(fig)
-    print(f"wrote {png}")
+    return finish(fig, png)
 
 
 def history(run_dir, png):

@@ -352,7 +352,7 @@ def full_grid(out):
     out.mkdir(parents=True)
     verdicts = ["verdict_log_strain", "verdict_strain_rate_per_s", "verdict_stress_pa"]
     columns = ["point", "grids", "needle.radius_mm", "needle.bevel_deg", "needle.fillet_mm", "status", "verdict",
-               *verdicts, "safe", "rules"]
+               *verdicts, "safe", "rules", "needle_max_lateral_force_n"]
     table = {c: [] for c in columns}
     for n, (radius, bevel, fillet, status) in enumerate(rows):
         name = f"p{n:02d}"
@@ -365,12 +365,17 @@ def full_grid(out):
         table["safe"].append((passes if n % 2 else 1 - passes) if status == "completed" else -1)
         table["rules"].append("fillet-fits-bevel: the fillet does not fit the bevel face, core-contains-needle"
                               if status == "impossible" else "")
+        table["needle_max_lateral_force_n"].append(1e-4 * (n + 1) if status == "completed" else math.nan)
         if status != "completed":
             continue
         (out / name).mkdir()
         case = {"needle": {"radius_mm": radius, "bevel_deg": bevel, "fillet_mm": fillet},
                 "motion": {"insertion_speed_mm_per_s": 1.0, "rotation_speed_deg_per_s": 180.0}}
-        (out / name / "summary.json").write_text(json.dumps({"status": "completed", "case": case,
+        limits = {"log_strain": 0.19, "strain_rate_per_s": 10.0, "stress_pa": 1.2e5}
+        safety = {name: {"limit": limit, "verdict": "pass" if passes else "fail",
+                         "critical_distance": {"value": limit * (0.5 + 0.02 * n)},
+                         "point_max": {"value": limit * (1.0 + 0.05 * n)}} for name, limit in limits.items()}
+        (out / name / "summary.json").write_text(json.dumps({"status": "completed", "case": case, "safety": safety,
                                                              "max": {"von_mises_pa": {"value": 1e3 * (n + 1)}}}))
         with open(out / name / "history.csv", "w") as f:
             f.write("time_s,max_log_strain,max_von_mises,max_strain_rate\n")
@@ -406,6 +411,13 @@ def full_grid_figures(args):
     renderer = fig.canvas.get_renderer()
     check(not overlaps(ax.get_legend().get_window_extent(renderer), ax.get_window_extent(renderer)),
           "Fig. 4: the legend lies outside the axes")
+    fig = sweep_figures.safety_steering(table, out / "safety_steering.png")
+    check(png_ok(out / "safety_steering.png"), "safety_steering.png written and not blank")
+    drawn = [line for line in fig.axes[0].get_lines() if not line.get_label().startswith("_")]
+    styles = {(tuple(line.get_color()) if not isinstance(line.get_color(), str) else line.get_color(),
+               line.get_marker()) for line in drawn}
+    check(len(drawn) == designs and len(styles) == designs,
+          f"safety beside steering: {len(styles)} distinct colour-marker pairs for {len(drawn)} of {designs} designs")
     fig = sweep_figures.safety_map(table, out / "safety_map.png")
     check(png_ok(out / "safety_map.png"), "safety_map.png written and not blank")
     marks = [sweep_figures.map_mark(table, i)[0] for i in table.indices()]
