@@ -96,11 +96,10 @@ class Checker {
       case KeyType::Choice: {
         auto s = node.as_string();
         if (!s) fail(key, fmt::format("expected a string, got {}", node_type_name(node)));
-        for (const auto& [former, current] : spec.aliases)
-          if (s->get() == former) return current;
-        if (std::find(spec.choices.begin(), spec.choices.end(), s->get()) == spec.choices.end())
+        const std::string choice = current_choice(spec, s->get());
+        if (std::find(spec.choices.begin(), spec.choices.end(), choice) == spec.choices.end())
           fail(key, fmt::format("'{}' is not one of: {}", s->get(), fmt::join(spec.choices, ", ")));
-        return s->get();
+        return choice;
       }
       case KeyType::RealList: {
         auto a = node.as_array();
@@ -360,14 +359,19 @@ std::string Case::to_toml() const {
   return out.str();
 }
 
+namespace {
+// Where a dotted key ("needle.radius_mm") sits in the echoed case: "/needle/radius_mm".
+nlohmann::json::json_pointer pointer_to(const std::string& key) {
+  std::string pointer = "/" + key;
+  std::replace(pointer.begin(), pointer.end(), '.', '/');
+  return nlohmann::json::json_pointer(pointer);
+}
+}  // namespace
+
 nlohmann::json Case::to_json() const {
   nlohmann::json out = nlohmann::json::object();
   for (const auto& [key, value] : values_->values)
-  {
-    std::string pointer = "/" + key;
-    std::replace(pointer.begin(), pointer.end(), '.', '/');
-    std::visit([&](const auto& v) { out[nlohmann::json::json_pointer(pointer)] = v; }, value);
-  }
+    std::visit([&](const auto& v) { out[pointer_to(key)] = v; }, value);
   return out;
 }
 
@@ -375,12 +379,8 @@ nlohmann::json Case::with_current_choice_names(nlohmann::json echoed) {
   if (!echoed.is_object()) return echoed;
   for (const KeySpec& spec : case_schema()) {
     if (spec.aliases.empty()) continue;
-    std::string pointer = "/" + spec.key;
-    std::replace(pointer.begin(), pointer.end(), '.', '/');
-    const nlohmann::json::json_pointer at(pointer);
-    if (!echoed.contains(at) || !echoed[at].is_string()) continue;
-    for (const auto& [former, current] : spec.aliases)
-      if (echoed[at] == former) echoed[at] = current;
+    const nlohmann::json::json_pointer at = pointer_to(spec.key);
+    if (echoed.contains(at) && echoed[at].is_string()) echoed[at] = current_choice(spec, echoed[at].get<std::string>());
   }
   return echoed;
 }

@@ -553,6 +553,12 @@ const std::vector<KeySpec>& case_schema() {
   return schema;
 }
 
+const std::string& current_choice(const KeySpec& spec, const std::string& value) {
+  for (const auto& [former, current] : spec.aliases)
+    if (value == former) return current;
+  return value;
+}
+
 const KeySpec* find_key(const std::string& key) {
   for (const auto& spec : case_schema())
     if (spec.key == key) return &spec;

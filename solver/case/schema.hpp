@@ -30,6 +30,8 @@ struct KeySpec {
 };
 
 const std::vector<KeySpec>& case_schema();
+// `value` of a choice key under its current name (KeySpec::aliases); any other value unchanged.
+const std::string& current_choice(const KeySpec& spec, const std::string& value);
 const KeySpec* find_key(const std::string& key);
 // The closest known key (edit distance), for "did you mean" hints; empty if none is close.
 std::string closest_key(const std::string& key);

@@ -253,7 +253,9 @@ CavityRounding round_cavity(TetMesh& mesh, const std::function<Point3(const Poin
   // by 0.2 mm), each free vertex of it searches for a better place: a compass search on the worst
   // straight-sided shape around it, steps along ±x, ±y, ±z from a quarter of its mean edge length,
   // halved when no step improves.
-  const std::vector<int> tangled = free_vertices_of_tets_below(kLeastScaledJacobian);
+  std::vector<int> tangled = free_vertices_of_tets_below(kLeastScaledJacobian);
+  std::sort(tangled.begin(), tangled.end());
+  tangled.erase(std::unique(tangled.begin(), tangled.end()), tangled.end());  // each vertex searched once
   for (int node : tangled) {
     double step = 0.0;
     for (int other : neighbours[node]) step += std::sqrt(squared_distance(mesh.nodes[node], mesh.nodes[other]));
