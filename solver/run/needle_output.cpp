@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <numbers>
+#include <utility>
 
 #include <fmt/core.h>
 
@@ -18,6 +20,7 @@ namespace {
 constexpr double kMmPerM = 1e3;
 constexpr double kMm2PerM2 = 1e6;
 constexpr double kPaPerGpa = 1e9;
+constexpr double kDegPerRad = 180.0 / std::numbers::pi;
 
 double largest_magnitude(const std::vector<double>& values) {
   double largest = 0.0;
@@ -28,16 +31,20 @@ double largest_magnitude(const std::vector<double>& values) {
 }  // namespace
 
 std::unique_ptr<NeedleOutput> NeedleOutput::attach(const Case& input, const TetMesh& mesh,
-                                                   mechanics::MechanicsSystem& system, double reference_modulus) {
+                                                   mechanics::MechanicsSystem& system, double reference_modulus,
+                                                   std::shared_ptr<const contact::HeadTilt> tilt) {
   if (!contact::needle_contact_enabled(input)) return nullptr;
-  return std::make_unique<NeedleOutput>(input, mesh, system, reference_modulus);
+  return std::make_unique<NeedleOutput>(input, mesh, system, reference_modulus, std::move(tilt));
 }
 
 NeedleOutput::NeedleOutput(const Case& input, const TetMesh& mesh, mechanics::MechanicsSystem& system,
-                           double reference_modulus)
-    : system_(system), contact_(input, mesh, reference_modulus), initial_gap_(contact_.initial_gap()) {
+                           double reference_modulus, std::shared_ptr<const contact::HeadTilt> tilt)
+    : system_(system), contact_(input, mesh, reference_modulus, std::move(tilt)), initial_gap_(contact_.initial_gap()) {
   system.add_surface_load(contact_.surface_load());
   if (!input.flag("needle.deflection_check")) return;
+  if (contact_.hinged_needle())
+    throw input.error("needle.deflection_check", "the compliant tip's neck is the hinge spring of its head "
+                                                 "(run/hinge_coupling.hpp); the check is for rigid tips");
   youngs_modulus_pa_ = input.real("needle.youngs_modulus_gpa") * kPaPerGpa;
   poisson_ratio_ = input.real("needle.poisson_ratio");
   const NeedleMotion& motion = contact_.needle().motion();
@@ -60,9 +67,11 @@ std::vector<output::FieldSpec> NeedleOutput::field_specs() {
           {"contact_slip", FieldCentre::node, FieldType::scalar, "mm", 1e3}};  // the mesh's unit
 }
 
-std::string NeedleOutput::history_header() {
-  return ",needle_force_x_n,needle_force_y_n,needle_force_z_n,needle_moment_x_n_m,needle_moment_y_n_m,"
-         "needle_moment_z_n_m,contact_area_mm2,needle_lateral_force_xi_n,needle_lateral_force_eta_n";
+std::string NeedleOutput::history_header() const {
+  return std::string(",needle_force_x_n,needle_force_y_n,needle_force_z_n,needle_moment_x_n_m,needle_moment_y_n_m,"
+                     "needle_moment_z_n_m,contact_area_mm2,needle_lateral_force_xi_n,needle_lateral_force_eta_n") +
+         (contact_.hinged_needle() ? ",head_angle_deg,head_tilt_x_rad,head_tilt_y_rad,head_moment_x_n_m,head_moment_y_n_m"
+                                   : "");
 }
 
 void NeedleOutput::evaluate(double t, Vec y, Vec ydot) {
@@ -77,6 +86,12 @@ void NeedleOutput::evaluate(double t, Vec y, Vec ydot) {
   const double angle = motion.rotation_speed * motion.elapsed(t), c = std::cos(angle), s = std::sin(angle);
   lateral_force_ = {c * load_.force[0] + s * load_.force[1], -s * load_.force[0] + c * load_.force[1]};
   lateral_force_magnitude_.push_back(std::hypot(lateral_force_[0], lateral_force_[1]));
+  if (const contact::HingedNeedle* hinged = contact_.hinged_needle()) {
+    head_load_ = contact_.load_on_head(t, state.data(), rate.data(), system_.dof_map());
+    head_tilt_ = hinged->tilt().at(t);
+    head_moments_.push_back({head_load_.moment[0], head_load_.moment[1]});
+    head_tilts_.push_back(head_tilt_);
+  }
   if (!elasticity_) return;
   const auto start = std::chrono::steady_clock::now();
   const auto deflection =
@@ -90,8 +105,12 @@ void NeedleOutput::evaluate(double t, Vec y, Vec ydot) {
 
 std::string NeedleOutput::history_cells() const {
   const Point3 &f = load_.force, &m = load_.moment;
-  return fmt::format(",{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}", f[0], f[1], f[2], m[0], m[1],
-                     m[2], load_.contact_area * kMm2PerM2, lateral_force_[0], lateral_force_[1]);
+  std::string cells = fmt::format(",{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}", f[0], f[1], f[2],
+                                  m[0], m[1], m[2], load_.contact_area * kMm2PerM2, lateral_force_[0], lateral_force_[1]);
+  if (contact_.hinged_needle())
+    cells += fmt::format(",{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}", std::hypot(head_tilt_[0], head_tilt_[1]) * kDegPerRad,
+                         head_tilt_[0], head_tilt_[1], head_load_.moment[0], head_load_.moment[1]);
+  return cells;
 }
 
 nlohmann::json NeedleOutput::summary() const {
@@ -108,6 +127,13 @@ nlohmann::json NeedleOutput::summary() const {
                           "lateral force: its part across the axis, what steers a bevel tip (history.csv gives it in the "
                           "needle's frame, xi towards the bevel face's lateral normal, turning with the needle); "
                           "max_* are the largest magnitudes over the output times"}};
+  if (contact_.hinged_needle())
+    s["head"] = {{"time_s", times_},
+                 {"tilt_rad", head_tilts_},
+                 {"moment_n_m", head_moments_},
+                 {"note", "the compliant tip's head: its tilt (rotation vector (x, y) about the pivot, "
+                          "physics/contact/hinged_needle.hpp) and the contact's moment (x, y) on the head about the "
+                          "pivot, at each output time"}};
   const auto range = [](const contact::GapRange& g) { return nlohmann::json{g.min * kMmPerM, g.max * kMmPerM}; };
   s["contact"] = {{"initial_gap_nodes_mm", range(initial_gap_.nodes)},
                   {"initial_gap_centroids_mm", range(initial_gap_.centroids)},

@@ -16,6 +16,11 @@
 //                largest elastic deflection under the contact loads over the output times
 //                (physics/contact/needle_elasticity.hpp), beside the contact's own resolution
 //                (the smallest elastic slip s₀) and the needle's travel.
+// The compliant tip (hinged_needle.hpp) adds, at every output time, the load on its head alone:
+//   history.csv  head_angle_deg (the tilt's length), head_tilt_{x,y}_rad (the tilt vector),
+//                head_moment_{x,y}_n_m (the contact's moment on the head about the pivot);
+//   summary.json "head": those moments and tilts over the output times (run/hinge_coupling.hpp
+//                balances them against the hinge spring and the magnet).
 #pragma once
 
 #include <array>
@@ -43,14 +48,16 @@ class NeedleOutput {
  public:
   // nullptr unless needle contact is on for this case; otherwise builds the contact and adds it
   // to `system` (both `mesh` and `system` must outlive the result).
+  // `tilt`: the compliant tip's head tilt (null: not turned).
   static std::unique_ptr<NeedleOutput> attach(const Case& input, const TetMesh& mesh,
-                                              mechanics::MechanicsSystem& system, double reference_modulus);
+                                              mechanics::MechanicsSystem& system, double reference_modulus,
+                                              std::shared_ptr<const contact::HeadTilt> tilt = nullptr);
 
   NeedleOutput(const Case& input, const TetMesh& mesh, mechanics::MechanicsSystem& system,
-               double reference_modulus);
+               double reference_modulus, std::shared_ptr<const contact::HeadTilt> tilt = nullptr);
 
   static std::vector<output::FieldSpec> field_specs();
-  static std::string history_header();  // starts with a comma
+  std::string history_header() const;  // starts with a comma
 
   // Evaluates the needle load and the surface fields of the state (y, y') at time t.
   void evaluate(double t, Vec y, Vec ydot);
@@ -73,6 +80,9 @@ class NeedleOutput {
   contact::NeedleContact::SurfaceFields fields_;
   std::vector<double> times_, axial_force_, torque_, lateral_force_magnitude_;
   std::array<double, 2> lateral_force_{};  // (ξ, η) in the needle's frame, of the last evaluate()
+  contact::NeedleLoad head_load_;                       // compliant tip, of the last evaluate()
+  std::array<double, 2> head_tilt_{};                   // rad, of the last evaluate()
+  std::vector<std::array<double, 2>> head_moments_, head_tilts_;  // over the output times
   std::unique_ptr<contact::NeedleElasticity> elasticity_;  // needle.deflection_check
   contact::NeedleElasticity::Deflection largest_deflection_;
   double largest_deflection_time_ = 0.0, needle_travel_m_ = 0.0, elasticity_seconds_ = 0.0;

@@ -34,6 +34,7 @@
 #include "physics/material/material.hpp"
 #include "physics/mechanics/dirichlet.hpp"
 #include "physics/mechanics/mechanics_system.hpp"
+#include "run/hinge_coupling.hpp"
 #include "run/mesh_scene_loads.hpp"
 #include "run/needle_output.hpp"
 #include "run/output_schedule.hpp"
@@ -268,7 +269,10 @@ SceneModel load_run_scene(const Case& c, const std::filesystem::path& out_dir, s
   return scene;
 }
 
-nlohmann::json run_case(const Case& c, const RunOptions& options) {
+namespace {
+
+// One run with the options' head tilt (if any).
+nlohmann::json run_one_pass(const Case& c, const RunOptions& options) {
   const auto start = Clock::now();
   const std::vector<double> times = output_times(c);  // its case errors before anything is written
   std::filesystem::create_directories(options.out_dir);
@@ -303,7 +307,7 @@ nlohmann::json run_case(const Case& c, const RunOptions& options) {
     const PetscSession petsc(options.petsc_options);
     material = std::make_unique<material::Material>(material::material_from_case(c));
     const auto system = mechanics::MechanicsSystem::from_case(c, mesh);
-    needle = NeedleOutput::attach(c, mesh, *system, material->instantaneous_shear_modulus());
+    needle = NeedleOutput::attach(c, mesh, *system, material->instantaneous_shear_modulus(), options.head_tilt);
     scene_loads = MeshSceneLoads::attach(c, mesh, *system, material->instantaneous_shear_modulus());
     // The needle's PETSc solvers go before the session does, also when the run fails.
     const struct ReleaseNeedleSolvers {
@@ -322,7 +326,7 @@ nlohmann::json run_case(const Case& c, const RunOptions& options) {
     if (needle) for (auto& spec : NeedleOutput::field_specs()) specs.push_back(std::move(spec));
     output::ResultFile file(options.out_dir / "result.h5", mesh, c.to_toml(), specs, times.size());
     HistoryCsv history(options.out_dir / "history.csv", record.surfaces,
-                       safety->history_header() + (needle ? NeedleOutput::history_header() : "") +
+                       safety->history_header() + (needle ? needle->history_header() : "") +
                            (scene_loads ? scene_loads->history_header() : ""));
     std::array<std::vector<double>, kScalarQuantities> max_over_time;
     for (auto& cells : max_over_time) cells.assign(mesh.tet_count(), 0.0);
@@ -442,6 +446,12 @@ nlohmann::json run_case(const Case& c, const RunOptions& options) {
   if (needle) summary.update(needle->summary());
   write_json_atomically(summary_file, summary);
   return summary;
+}
+
+}  // namespace
+
+nlohmann::json run_case(const Case& c, const RunOptions& options) {
+  return head_turns_in_tissue(c) ? run_hinged_case(c, options, run_one_pass) : run_one_pass(c, options);
 }
 
 }  // namespace needlefem::run

@@ -19,6 +19,7 @@
 #include <atomic>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,9 @@
 
 namespace needlefem {
 class Case;
+}
+namespace needlefem::contact {
+class HeadTilt;
 }
 
 namespace needlefem::run {
@@ -39,6 +43,8 @@ struct RunOptions {
   // Raised (InterruptGuard: SIGINT, SIGTERM), the run stops after the IDA step in progress:
   // summary.json says "interrupted", the completed output times stay, Interrupted is thrown.
   const std::atomic<bool>* stop = nullptr;
+  // The compliant tip's head tilt over time (run/hinge_coupling.hpp sets it for each pass).
+  std::shared_ptr<const contact::HeadTilt> head_tilt;
 };
 
 // The scene a run solves: load_scene_model's mesh with its cavity moved onto the rounded needle
@@ -46,7 +52,8 @@ struct RunOptions {
 // shows the same mesh.
 SceneModel load_run_scene(const Case& c, const std::filesystem::path& out_dir, std::FILE* progress);
 
-// Returns the summary written to out_dir/summary.json.
+// Returns the summary written to out_dir/summary.json. The compliant tip in frictional contact
+// runs as the passes of run/hinge_coupling.hpp.
 nlohmann::json run_case(const Case& c, const RunOptions& options);
 
 }  // namespace needlefem::run

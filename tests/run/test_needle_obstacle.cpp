@@ -11,6 +11,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "../contact/obstacle_derivatives.hpp"
 #include "physics/contact/needle_obstacle.hpp"
 
 namespace needlefem::contact {
@@ -141,22 +142,8 @@ TEST(NeedleObstacle, RoundedTipIsCapsule) {
   }
 }
 
-// Central differences of g and n at points a distance d off the surface (one face each, so the
-// closest-point piece does not change within the difference step).
 void expect_derivatives(const RigidNeedle& needle, const Point3& x, const char* what) {
-  const double h = 1e-9;  // m; against distances >= 3 µm: O(h²/d²) truncation <= 1e-7 relative
-  const ObstacleProjection p = needle.project_in_needle_frame(x);
-  for (int k = 0; k < 3; ++k) {
-    Point3 plus = x, minus = x;
-    plus[k] += h;
-    minus[k] -= h;
-    const ObstacleProjection a = needle.project_in_needle_frame(plus), b = needle.project_in_needle_frame(minus);
-    EXPECT_NEAR((a.gap - b.gap) / (2 * h), p.normal[k], 1e-6) << what << " dg/dx_" << k;
-    for (int i = 0; i < 3; ++i)
-      EXPECT_NEAR((a.normal[i] - b.normal[i]) / (2 * h), p.normal_gradient[3 * i + k],
-                  1e-6 * std::max(1.0 / r, std::abs(p.normal_gradient[3 * i + k])))
-          << what << " dn_" << i << "/dx_" << k;
-  }
+  expect_gap_derivatives([&](const Point3& at) { return needle.project_in_needle_frame(at); }, x, 1.0 / r, 1e-6, what);
 }
 
 TEST(NeedleObstacle, NormalAndItsGradientAreDerivativesOfTheGap) {

@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <limits>
 #include <map>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -79,20 +80,25 @@ std::shared_ptr<const CadNeedleShape> cad_needle_shape(const Case& input, const 
 
 }  // namespace
 
-std::shared_ptr<const RigidNeedle> rigid_needle_from_case(const Case& input, std::shared_ptr<const RigidNeedle>* sharp) {
+std::shared_ptr<const Needle> needle_from_case(const Case& input, std::shared_ptr<const Needle>* sharp,
+                                               std::shared_ptr<const HeadTilt> tilt) {
   constexpr double kMPerUm = 1e-6;
-  constexpr double kSharpEdge = 1e-12;  // m: the bevel needle without its edge rounding
+  constexpr double kSharpEdge = 1e-12;  // m: the needle without its edge rounding
   const NeedleTip tip = needle_tip_from_case(input);
   const double edge_radius = input.real("needle.edge_radius_um") * kMPerUm;
   const NeedleMotion motion = needle_motion_from_case(input);
-  if (tip.kind == NeedleTip::Kind::Cad) {
-    const CadTipTriangulation cad = triangulate_cad_tip(input);
-    if (sharp) *sharp = std::make_shared<RigidNeedle>(cad_needle_shape(input, cad, 0.0), motion);
-    return std::make_shared<RigidNeedle>(cad_needle_shape(input, cad, edge_radius), motion);
+  switch (tip.kind) {
+    case NeedleTip::Kind::Cad: {
+      const CadTipTriangulation cad = triangulate_cad_tip(input);
+      if (sharp) *sharp = std::make_shared<RigidNeedle>(cad_needle_shape(input, cad, 0.0), motion);
+      return std::make_shared<RigidNeedle>(cad_needle_shape(input, cad, edge_radius), motion);
+    }
+    case NeedleTip::Kind::Compliant:
+      if (sharp) *sharp = std::make_shared<HingedNeedle>(tip.compliant, motion, kSharpEdge, tilt);
+      return std::make_shared<HingedNeedle>(tip.compliant, motion, edge_radius, tilt);
+    case NeedleTip::Kind::Bevel:
+      break;
   }
-  if (tip.kind != NeedleTip::Kind::Bevel)
-    throw input.error("contact.mode", "frictional contact needs a convex needle (needle.kind = \"bevel\" or \"cad\"); "
-                                      "the compliant tip's neck is not convex: use contact.mode = \"tied\"");
   if (sharp) *sharp = std::make_shared<RigidNeedle>(tip.bevel, motion, kSharpEdge);
   return std::make_shared<RigidNeedle>(tip.bevel, motion, edge_radius);
 }
@@ -100,8 +106,8 @@ std::shared_ptr<const RigidNeedle> rigid_needle_from_case(const Case& input, std
 CavityRounding round_cavity_to_needle(const Case& input, TetMesh& mesh) {
   if (!needle_contact_enabled(input)) return {};
   const bool user_mesh = !input.path("scene.mesh_file").empty();
-  std::shared_ptr<const RigidNeedle> sharp;  // without the edge rounding, as the cavity was meshed
-  const std::shared_ptr<const RigidNeedle> needle = rigid_needle_from_case(input, user_mesh ? &sharp : nullptr);
+  std::shared_ptr<const Needle> sharp;  // without the edge rounding, as the cavity was meshed
+  const std::shared_ptr<const Needle> needle = needle_from_case(input, user_mesh ? &sharp : nullptr);
   if (user_mesh) require_cavity_on_needle(input, mesh, *sharp);
   return round_cavity(mesh, [&](const Point3& X) {
     const ObstacleProjection p = needle->project(X, 0.0);
@@ -109,8 +115,10 @@ CavityRounding round_cavity_to_needle(const Case& input, TetMesh& mesh) {
   });
 }
 
-NeedleContact::NeedleContact(const Case& input, const TetMesh& mesh, double reference_modulus) : mesh_(mesh) {
-  needle_ = rigid_needle_from_case(input);
+NeedleContact::NeedleContact(const Case& input, const TetMesh& mesh, double reference_modulus,
+                             std::shared_ptr<const HeadTilt> tilt)
+    : mesh_(mesh) {
+  needle_ = needle_from_case(input, nullptr, std::move(tilt));
   ContactParameters parameters = contact_parameters_from_case(input, reference_modulus);
   parameters.reference_gap_offset = true;  // the cavity is meshed from the needle's shape
   smoothing_pressure_ = parameters.penalty_smoothing * reference_modulus;
@@ -131,6 +139,14 @@ NeedleContact::NeedleContact(const Case& input, const TetMesh& mesh, double refe
 NeedleLoad NeedleContact::load_on_needle(double t, const double* y, const double* ydot,
                                          const mechanics::DofMap& dofs) const {
   const ContactResultant r = contact_->resultant(t, y, ydot, dofs, needle_->rear_face_centre(t));
+  return {r.force_on_obstacle, r.moment_on_obstacle, r.contact_area};
+}
+
+NeedleLoad NeedleContact::load_on_head(double t, const double* y, const double* ydot,
+                                       const mechanics::DofMap& dofs) const {
+  const HingedNeedle* hinged = hinged_needle();
+  if (!hinged) throw std::logic_error("load_on_head: the needle has no head");
+  const ContactResultant r = contact_->resultant(t, y, ydot, dofs, hinged->pivot(t), HingedNeedle::head);
   return {r.force_on_obstacle, r.moment_on_obstacle, r.contact_area};
 }
 

@@ -32,6 +32,7 @@
 
 #include "model/cavity_rounding.hpp"
 #include "model/tet_mesh.hpp"
+#include "physics/contact/hinged_needle.hpp"
 #include "physics/contact/needle_obstacle.hpp"
 #include "physics/contact/penalty_contact.hpp"
 #include "physics/mechanics/dof_map.hpp"
@@ -42,12 +43,13 @@ class Case;
 
 namespace needlefem::contact {
 
-// The rigid needle of the case's [needle] and [motion]: the analytic bevel (needle_obstacle.hpp)
-// or a CAD tip (needle.kind = "cad", cad_needle.hpp). Throws CaseError for the compliant tip (not
-// convex) and for a CAD file that breaks a rule (mesh/cad_tip.hpp). `sharp` (optional): also
-// the same needle without its edge rounding, from the same triangulation.
-std::shared_ptr<const RigidNeedle> rigid_needle_from_case(const Case& input,
-                                                          std::shared_ptr<const RigidNeedle>* sharp = nullptr);
+// The needle of the case's [needle] and [motion]: the analytic bevel (needle_obstacle.hpp), a
+// CAD tip (needle.kind = "cad", cad_needle.hpp), or the compliant tip, its head turned by `tilt`
+// (needle.kind = "compliant", hinged_needle.hpp; null: not turned). Throws CaseError for a CAD
+// file that breaks a rule (mesh/cad_tip.hpp). `sharp` (optional): also the same needle without
+// its edge rounding (a CAD tip's from the same triangulation).
+std::shared_ptr<const Needle> needle_from_case(const Case& input, std::shared_ptr<const Needle>* sharp = nullptr,
+                                               std::shared_ptr<const HeadTilt> tilt = nullptr);
 
 // True for the brain-tip scene with contact.mode = "frictional".
 bool needle_contact_enabled(const Case& input);
@@ -72,17 +74,22 @@ struct GapRange {
 
 class NeedleContact {
  public:
-  // The needle of the case's [needle] and [motion], the cavity of `mesh` (which must outlive
-  // this), [contact] parameters; μ₀ = the tissue's instantaneous shear modulus. Throws
-  // CaseError for a needle kind that is not convex (compliant).
-  NeedleContact(const Case& input, const TetMesh& mesh, double reference_modulus);
+  // The needle of the case's [needle] and [motion] (a compliant tip's head turned by `tilt`), the
+  // cavity of `mesh` (which must outlive this), [contact] parameters; μ₀ = the tissue's
+  // instantaneous shear modulus.
+  NeedleContact(const Case& input, const TetMesh& mesh, double reference_modulus,
+                std::shared_ptr<const HeadTilt> tilt = nullptr);
 
   std::shared_ptr<mechanics::SurfaceLoad> surface_load() const { return contact_; }
-  const RigidNeedle& needle() const { return *needle_; }
+  const Needle& needle() const { return *needle_; }
+  // The compliant tip's two bodies; null for a rigid needle.
+  const HingedNeedle* hinged_needle() const { return dynamic_cast<const HingedNeedle*>(needle_.get()); }
   const PenaltyContact& contact() const { return *contact_; }
 
   // y, ydot: displacement parts of the state (dof numbering of `dofs`).
   NeedleLoad load_on_needle(double t, const double* y, const double* ydot, const mechanics::DofMap& dofs) const;
+  // The compliant tip: the load on its head alone, the moment about the pivot (hinged_needle.hpp).
+  NeedleLoad load_on_head(double t, const double* y, const double* ydot, const mechanics::DofMap& dofs) const;
 
   struct SurfaceFields {
     std::vector<double> pressure;  // Pa, per mesh node, 0 off the cavity
@@ -106,7 +113,7 @@ class NeedleContact {
 
  private:
   const TetMesh& mesh_;
-  std::shared_ptr<const RigidNeedle> needle_;
+  std::shared_ptr<const Needle> needle_;
   std::shared_ptr<PenaltyContact> contact_;
   std::vector<int> cavity_nodes_;
   std::vector<double> node_penalty_;  // ε̄_a per cavity node (same order)

@@ -73,7 +73,16 @@ class NeedleShape {
   virtual double edge_radius() const = 0;
 };
 
-class RigidNeedle final : public RigidObstacle {
+// What the cavity's contact and its outputs need of a needle of the brain-tip scene: the rigid
+// bevel or CAD tip below, or the hinged compliant tip (hinged_needle.hpp).
+class Needle : public RigidObstacle {
+ public:
+  virtual Point3 rear_face_centre(double t) const = 0;
+  virtual const NeedleMotion& motion() const = 0;
+  virtual double edge_radius() const = 0;
+};
+
+class RigidNeedle final : public Needle {
  public:
   // edge_radius = ρ in metres before the cap ρ <= τ (case key needle.edge_radius_um). Throws
   // std::invalid_argument for tips that break their validity rules and for ρ <= 0.
@@ -87,9 +96,9 @@ class RigidNeedle final : public RigidObstacle {
   // Where the needle point that sat at ξ at t = 0 is at time t, and its inverse.
   Point3 from_body(const Point3& xi, double t) const override;
   Point3 to_body(const Point3& x, double t) const override;
-  Point3 rear_face_centre(double t) const;
-  const NeedleMotion& motion() const { return motion_; }
-  double edge_radius() const { return edge_radius_; }
+  Point3 rear_face_centre(double t) const override;
+  const NeedleMotion& motion() const override { return motion_; }
+  double edge_radius() const override { return edge_radius_; }
 
  private:
   // The rigid motion at one time: rotation R_z (cos, sin) and the rear-face centre d, computed

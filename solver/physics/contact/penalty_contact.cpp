@@ -242,7 +242,7 @@ PenaltyContact::PenaltyContact(const TetMesh& mesh, const std::string& surface,
 
 FaceTerms PenaltyContact::face_terms(std::size_t face, const double* x, const double* v, double t, double cj,
                                      bool with_jacobian, const Point3& moment_point,
-                                     mechanics::NewtonMatrix form) const {
+                                     mechanics::NewtonMatrix form, int body) const {
   const int m = nodes_per_face_, n = 3 * m;
   const double mu = parameters_.friction_coefficient;
   const double penalty = faces_[face].penalty;
@@ -280,14 +280,16 @@ FaceTerms PenaltyContact::face_terms(std::size_t face, const double* x, const do
     for (int i = 0; i < 3; ++i) traction[i] = pressure * normal[i] + tangential.traction[i];
 
     const double w = point.area_weight;
-    out.contact_area += w;
-    if (tangential.slipping) out.slipping_area += w;
-    Point3 arm;
-    for (int i = 0; i < 3; ++i) arm[i] = position[i] - moment_point[i];
-    const Point3 moment = cross(arm, traction);
-    for (int i = 0; i < 3; ++i) {
-      out.force_on_tissue[i] += w * traction[i];
-      out.moment_on_tissue[i] += w * moment[i];
+    if (body < 0 || p.body == body) {
+      out.contact_area += w;
+      if (tangential.slipping) out.slipping_area += w;
+      Point3 arm;
+      for (int i = 0; i < 3; ++i) arm[i] = position[i] - moment_point[i];
+      const Point3 moment = cross(arm, traction);
+      for (int i = 0; i < 3; ++i) {
+        out.force_on_tissue[i] += w * traction[i];
+        out.moment_on_tissue[i] += w * moment[i];
+      }
     }
     for (int a = 0; a < m; ++a)
       for (int i = 0; i < 3; ++i) out.residual[3 * a + i] -= w * point.shape[a] * traction[i];
@@ -385,12 +387,14 @@ bool PenaltyContact::depends_on_rates() const {
 }
 
 ContactResultant PenaltyContact::resultant(double t, const double* y, const double* ydot,
-                                           const mechanics::DofMap& dofs, const Point3& moment_point) const {
+                                           const mechanics::DofMap& dofs, const Point3& moment_point,
+                                           int body) const {
   ContactResultant total;
   std::vector<double> x(3 * nodes_per_face_), v(3 * nodes_per_face_);
   for (std::size_t f = 0; f < faces_.size(); ++f) {
     gather(f, y, ydot, dofs, x.data(), v.data());
-    const FaceTerms terms = face_terms(f, x.data(), v.data(), t, 0.0, false, moment_point);
+    const FaceTerms terms =
+        face_terms(f, x.data(), v.data(), t, 0.0, false, moment_point, mechanics::NewtonMatrix::exact, body);
     for (int i = 0; i < 3; ++i) {
       total.force_on_obstacle[i] -= terms.force_on_tissue[i];
       total.moment_on_obstacle[i] -= terms.moment_on_tissue[i];

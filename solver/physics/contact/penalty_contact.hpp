@@ -243,12 +243,15 @@ class PenaltyContact final : public mechanics::SurfaceLoad {
   // the difference: default Table I case 11 Cholesky factorisations instead of 5 + 7 LU,
   // 674 GMRES iterations instead of 726, the same maxima within 0.1 %; but less robust at hard
   // stick/slip events (integration.krylov_preconditioner, whose default is the exact matrix).
+  // force_on_tissue, moment_on_tissue and contact_area count only the points whose closest point
+  // is on `body` of an articulated obstacle (ObstacleProjection::body; -1: every point).
   FaceTerms face_terms(std::size_t face, const double* x, const double* v, double t, double cj, bool with_jacobian,
                        const Point3& moment_point = {},
-                       mechanics::NewtonMatrix form = mechanics::NewtonMatrix::exact) const;
+                       mechanics::NewtonMatrix form = mechanics::NewtonMatrix::exact, int body = -1) const;
 
+  // Of the points on `body` (-1: all).
   ContactResultant resultant(double t, const double* y, const double* ydot, const mechanics::DofMap& dofs,
-                             const Point3& moment_point = {}) const;
+                             const Point3& moment_point = {}, int body = -1) const;
   // Friction through the slip velocity (the velocity law, or the return map's rate strengthening).
   bool depends_on_rates() const override;
 

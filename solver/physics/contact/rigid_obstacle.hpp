@@ -27,6 +27,7 @@ struct ObstacleProjection {
   Matrix3 normal_gradient{};
   Point3 velocity{};
   Matrix3 velocity_gradient{};
+  int body = 0;  // which rigid body of an articulated obstacle the closest point is on (hinged_needle.hpp)
 };
 
 class RigidObstacle {

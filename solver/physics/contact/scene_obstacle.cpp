@@ -3,7 +3,6 @@
 
 #include "case/case.hpp"
 #include "geometry/needle_motion.hpp"
-#include "geometry/needle_tip.hpp"
 #include "physics/contact/needle_contact.hpp"
 
 namespace needlefem::contact {
@@ -29,11 +28,8 @@ std::shared_ptr<const RigidObstacle> scene_obstacle(const Case& input) {
   if (kind == "sphere")
     return std::make_shared<TranslatingSphere>(point_in_metres(input, "obstacle.point_mm"),
                                                input.real("obstacle.radius_mm") * kMetresPerMm, velocity);
-  if (kind == "needle") {
-    if (needle_tip_from_case(input).kind == NeedleTip::Kind::Compliant)
-      throw input.error("obstacle.kind", "a needle obstacle must be convex (needle.kind = \"bevel\" or \"cad\")");
-    return std::make_shared<OffsetObstacle>(rigid_needle_from_case(input), point_in_metres(input, "obstacle.point_mm"));
-  }
+  if (kind == "needle")
+    return std::make_shared<OffsetObstacle>(needle_from_case(input), point_in_metres(input, "obstacle.point_mm"));
   return nullptr;
 }
 
