@@ -14,7 +14,8 @@
                and the FEM angle lies below Eq. 2.7 in air, by less than 5 % (the tissue's
                rotational stiffness is a small fraction of the neck's for this needle);
              - the fitted tissue spring constant is positive, and Eq. 2.7 with it reproduces the
-               FEM's final angle within 1 %.
+               FEM's final angle within 1 %;
+             - postprocess/hinge_figure.py draws the run.
   errors   a schedule whose magnet already turns the head at t = 0 stops with one line naming
            steering.magnet_distance_mm and a non-zero exit.
 """
@@ -32,6 +33,7 @@ COARSE = ["--set", "tissue.core_element_mm=0.6", "--set", "motion.duration_s=0.1
           "--set", "steering.magnet_distance_mm=[300.0, 300.0, 75.30, 61.57]",
           "--set", "steering.pull_azimuth_deg=[0.0, 0.0, 0.0, 0.0]"]
 
+FIGURE = pathlib.Path(__file__).resolve().parents[2] / "postprocess" / "hinge_figure.py"
 failures = []
 
 
@@ -104,6 +106,10 @@ def turning(args):
     check(hinge["fitted_tissue_spring_constant_n_per_m2"] > 0 and fitted_error < 0.01,
           f"fitted mu_t = {hinge['fitted_tissue_spring_constant_n_per_m2']:.4g} N/m^2; Eq. 2.7 with it gives the "
           f"final FEM angle to {fitted_error:.2%}")
+    figure = subprocess.run(["/usr/bin/python3", str(FIGURE), str(out)], capture_output=True, text=True)
+    png = out / "hinge.png"
+    check(figure.returncode == 0 and png.is_file() and png.stat().st_size > 10000,
+          f"postprocess/hinge_figure.py draws {png.name} ({figure.stderr.strip()[-200:]})")
 
 
 def errors(args):
