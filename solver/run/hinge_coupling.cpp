@@ -26,8 +26,13 @@ namespace needlefem::run {
 
 namespace {
 
-// The passes stop once every output time's tilt is this close to its moment balance (0.0006 deg).
-constexpr double kTiltTolerance = 1e-5;  // rad
+// The passes stop once every output time's tilt is within this fraction of the largest turning
+// angle (Eq. 2.7 in air) of its moment balance, or within kSmallestTiltTolerance. Why relative: a
+// pass's contact moment repeats only to the integration's own accuracy (its steps differ from pass
+// to pass; measured on the 0.4 mm mesh at 15 deg, the second pass was 0.014 deg, 0.09 %, off), and
+// 0.1 % of the angle is an order below the tissue's effect on it and two below the hinge model's.
+constexpr double kRelativeTiltTolerance = 1e-3;
+constexpr double kSmallestTiltTolerance = 1e-5;  // rad
 constexpr int kMaxPasses = 6;
 // The magnet may turn the head by at most this at the first output time, before the tissue is
 // loaded: the cavity was meshed around the untilted needle.
@@ -125,7 +130,7 @@ Fit fit_tissue_term(const std::vector<Pull>& pulls, const std::vector<Tilt>& til
 std::string hinge_outputs(nlohmann::json& summary, const RunOptions& options, const std::vector<double>& times,
                           const std::vector<Pull>& pulls, const std::vector<Tilt>& tilts,
                           const std::vector<Tilt>& moments, const std::vector<double>& residuals, double stiffness,
-                          const Fit& fit, int pass) {
+                          const Fit& fit, int pass, double tolerance) {
   const double residual = *std::max_element(residuals.begin(), residuals.end());
   std::string csv =
       "time_s,magnet_distance_mm,flux_density_t,pull_force_n,head_angle_deg,head_angle_eq27_air_deg,"
@@ -148,9 +153,9 @@ std::string hinge_outputs(nlohmann::json& summary, const RunOptions& options, co
   }
   summary["hinge"] = {
       {"passes", pass},
-      {"converged", residual <= kTiltTolerance},
+      {"converged", residual <= tolerance},
       {"balance_residual_rad", residual},
-      {"tilt_tolerance_rad", kTiltTolerance},
+      {"tilt_tolerance_rad", tolerance},
       {"hinge_stiffness_n_m_per_rad", stiffness},
       {"max_head_angle_deg", largest * kDegPerRad},
       {"max_head_angle_eq27_air_deg", largest_air * kDegPerRad},
@@ -164,7 +169,7 @@ std::string hinge_outputs(nlohmann::json& summary, const RunOptions& options, co
                "pivot at the output times (run/hinge_coupling.hpp); balance_residual_rad: how far the last pass's "
                "tilt was from that balance; fitted_tissue_spring_constant_n_per_m2: mu_t of Eq. 2.4 fitted to the FEM's "
                "tissue moment, for steering.tissue_spring_constant_n_per_m2 of `needlefem steer`"}};
-  if (!(residual <= kTiltTolerance)) {
+  if (!(residual <= tolerance)) {
     summary["hinge"]["warning"] = fmt::format("the tilt did not reach the moment balance in {} passes (off by {:.3g} deg)",
                                               pass, residual * kDegPerRad);
     if (options.progress) fmt::print(options.progress, "hinge: warning: {}\n", summary["hinge"]["warning"].get<std::string>());
@@ -191,6 +196,9 @@ nlohmann::json run_hinged_case(const Case& c, const RunOptions& options, const R
                               pulls.front().eq27_case_rad * kDegPerRad, times.front()));
   std::vector<Tilt> tilts;
   for (const Pull& p : pulls) tilts.push_back({p.eq27_case_rad * p.axis[0], p.eq27_case_rad * p.axis[1]});
+  double largest_in_air = 0.0;
+  for (const Pull& p : pulls) largest_in_air = std::max(largest_in_air, p.moment_n_m / stiffness);
+  const double tolerance = std::max(kSmallestTiltTolerance, kRelativeTiltTolerance * largest_in_air);
 
   const PetscSession petsc(options.petsc_options);  // one for every pass: MPI starts once per process
   nlohmann::json summary;
@@ -212,13 +220,14 @@ nlohmann::json run_hinged_case(const Case& c, const RunOptions& options, const R
     if (options.progress)
       fmt::print(options.progress, "hinge: pass {}: the tilt is within {:.3g} deg of the moment balance\n", pass,
                  residual * kDegPerRad);
-    if (residual <= kTiltTolerance || pass == kMaxPasses) break;
+    if (residual <= tolerance || pass == kMaxPasses) break;
     const Fit fit = fit_tissue_term(pulls, tilts, moments, setup.model.tip_lever_m());
     tilts = next_tilts(pulls, tilts, moments, stiffness, std::max(0.0, fit.rotational_stiffness));
   }
 
   const Fit fit = fit_tissue_term(pulls, tilts, moments, setup.model.tip_lever_m());
-  const std::string csv = hinge_outputs(summary, options, times, pulls, tilts, moments, residuals, stiffness, fit, pass);
+  const std::string csv =
+      hinge_outputs(summary, options, times, pulls, tilts, moments, residuals, stiffness, fit, pass, tolerance);
   summary["files"]["hinge"] = "hinge.csv";
   output::replace_files_atomically({{options.out_dir / "hinge.csv", csv},
                                     {options.out_dir / "summary.json", summary.dump(2) + "\n"}});
