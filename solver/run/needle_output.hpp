@@ -1,4 +1,4 @@
-// What `needlefem run` adds for the rigid needle of the brain-tip scene in frictional contact
+// What `needlefem run` adds for the needle of the brain-tip scene in frictional contact
 // (contact.mode = "frictional", physics/contact/needle_contact.hpp): it registers the contact as
 // a surface load of the mechanics system and, at every output time, reports
 //   history.csv  needle_force_{x,y,z}_n, needle_moment_{x,y,z}_n_m (on the needle, moment about

@@ -1,9 +1,11 @@
-// Frictional contact between the tissue cavity and the rigid needle of the brain-tip scene
-// (paper 001), and the quantities `needlefem run` reports about it.
+// Frictional contact between the tissue cavity and the needle of the brain-tip scene (paper 001's
+// rigid bevel, a CAD tip, or paper 000's hinged compliant tip), and the quantities `needlefem run`
+// reports about it.
 //
 // Contact law: penalty_contact.hpp (penalty normal ε_N = c μ₀/h_face, slip-velocity-regularised
 // Coulomb friction μ, at the surface quadrature points of the "cavity" faces). Obstacle:
-// needle_obstacle.hpp (bevel or rounded tip, insertion v t' e_z and rotation ω t' about z).
+// needle_obstacle.hpp (bevel or rounded tip, insertion v t' e_z and rotation ω t' about z), or
+// hinged_needle.hpp (the compliant tip, its head also turned about the neck).
 // Gaps are measured from each quadrature point's own gap at t = 0 (reference_gap_offset): the
 // cavity is meshed from the needle's shape and its nodes moved onto the rounded needle
 // (round_cavity_to_needle), so the undeformed tissue touches the needle and only the faceting of
