@@ -32,4 +32,18 @@ void expect_gap_derivatives(const Project& project, const Point3& x, double curv
   }
 }
 
+// W = ∂w/∂x by central differences of the obstacle's velocity field at time t (step 0.1 µm).
+template <class Obstacle>
+void expect_velocity_gradient(const Obstacle& obstacle, const Point3& x, double t) {
+  const double h = 1e-7;
+  const ObstacleProjection p = obstacle.project(x, t);
+  for (int k = 0; k < 3; ++k) {
+    Point3 plus = x, minus = x;
+    plus[k] += h;
+    minus[k] -= h;
+    const Point3 wp = obstacle.project(plus, t).velocity, wm = obstacle.project(minus, t).velocity;
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR((wp[i] - wm[i]) / (2 * h), p.velocity_gradient[3 * i + k], 1e-9);
+  }
+}
+
 }  // namespace needlefem::contact

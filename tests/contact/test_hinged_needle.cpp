@@ -125,14 +125,7 @@ TEST(HingedNeedle, VelocityFieldIsTheRateOfThePose) {
     for (int i = 0; i < 3; ++i) EXPECT_NEAR((ahead[i] - behind[i]) / (2 * dt), pr.velocity[i], 1e-11);
     const double rate = (needle.project(x, t + dt).gap - needle.project(x, t - dt).gap) / (2 * dt);
     EXPECT_NEAR(rate, -dot(pr.normal, pr.velocity), 1e-9);
-    const double h = 1e-7;
-    for (int k = 0; k < 3; ++k) {
-      Point3 plus = x, minus = x;
-      plus[k] += h;
-      minus[k] -= h;
-      const Point3 wp = needle.project(plus, t).velocity, wm = needle.project(minus, t).velocity;
-      for (int i = 0; i < 3; ++i) EXPECT_NEAR((wp[i] - wm[i]) / (2 * h), pr.velocity_gradient[3 * i + k], 1e-9);
-    }
+    expect_velocity_gradient(needle, x, t);
   }
 }
 

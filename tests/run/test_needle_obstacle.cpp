@@ -186,14 +186,7 @@ TEST(NeedleObstacle, PoseVelocityAndItsGradientMatchTheMotion) {
     EXPECT_NEAR((ahead[i] - behind[i]) / (2 * dt), p.velocity[i], 1e-12);
   }
   // W = ∂w/∂x.
-  const double h = 1e-7;
-  for (int k = 0; k < 3; ++k) {
-    Point3 plus = x, minus = x;
-    plus[k] += h;
-    minus[k] -= h;
-    const Point3 wp = needle.project(plus, t).velocity, wm = needle.project(minus, t).velocity;
-    for (int i = 0; i < 3; ++i) EXPECT_NEAR((wp[i] - wm[i]) / (2 * h), p.velocity_gradient[3 * i + k], 1e-9);
-  }
+  expect_velocity_gradient(needle, x, t);
   // Rotating the point with the needle leaves its gap unchanged; past the duration the needle rests.
   EXPECT_NEAR(needle.project(x, t).gap, needle.project_in_needle_frame(X).gap, 1e-18);
   const ObstacleProjection after = needle.project(x, 0.2);
