@@ -271,164 +271,201 @@ SceneModel load_run_scene(const Case& c, const std::filesystem::path& out_dir, s
 
 namespace {
 
-// One run with the options' head tilt (if any).
-nlohmann::json run_one_pass(const Case& c, const RunOptions& options) {
-  const auto start = Clock::now();
-  const std::vector<double> times = output_times(c);  // its case errors before anything is written
-  std::filesystem::create_directories(options.out_dir);
-  const OutputDirectoryLock owned(options.out_dir);
-  const auto summary_file = options.out_dir / "summary.json";
-  // Until the run ends, summary.json says it is running (replacing a stale one), so that a run
-  // killed outright (SIGKILL, a power cut) leaves a summary that claims nothing it did not finish.
-  write_json_atomically(summary_file, running_summary_json(c));
+// The objects a pass's output times write to.
+struct PassOutputs {
+  const fields::TissueFieldEvaluator& evaluator;
+  output::ResultFile& file;
+  HistoryCsv& history;
+  std::array<std::vector<double>, kScalarQuantities>& max_over_time;  // per tet, over the times so far
+};
 
-  RunRecord record;
-  std::unique_ptr<SceneModel> scene;
-  std::unique_ptr<material::Material> material;
-  std::unique_ptr<NeedleOutput> needle;
-  std::unique_ptr<MeshSceneLoads> scene_loads;
-  std::unique_ptr<SafetyReport> safety;
-  // A stop request (options.stop) ends the run after the step in progress, keeping every
-  // completed output time.
-  const auto stop_if_asked = [&](double t) {
-    if (!options.stop || !options.stop->load()) return;
-    throw Interrupted(InterruptGuard::signal_number(),
-                      fmt::format("stopped by {} at t = {:.6g} s; result.h5 and result.xdmf hold the {} output times "
-                                  "completed before", signal_name(InterruptGuard::signal_number()), t,
-                                  record.output_times_written));
-  };
-  try {
-    scene = std::make_unique<SceneModel>(load_run_scene(c, options.out_dir, options.progress));
-    require_valid_elements(*scene);
-    record.mesh_s = seconds_since(start);
-    stop_if_asked(times.front());
-    const TetMesh& mesh = scene->mesh;
+// One run with the options' head tilt (if any). What the summary reports (the record, the scene,
+// the material, the needle and safety reports) outlives the integration's own objects, so that a
+// run that fails or is stopped still writes its summary.
+class RunPass {
+ public:
+  RunPass(const Case& c, const RunOptions& options) : c_(c), options_(options) {}
 
-    const PetscSession petsc(options.petsc_options);
-    material = std::make_unique<material::Material>(material::material_from_case(c));
-    const auto system = mechanics::MechanicsSystem::from_case(c, mesh);
-    needle = NeedleOutput::attach(c, mesh, *system, material->instantaneous_shear_modulus(), options.head_tilt);
-    scene_loads = MeshSceneLoads::attach(c, mesh, *system, material->instantaneous_shear_modulus());
+  nlohmann::json run() {
+    std::filesystem::create_directories(options_.out_dir);
+    const OutputDirectoryLock owned(options_.out_dir);
+    const auto summary_file = options_.out_dir / "summary.json";
+    // Until the run ends, summary.json says it is running (replacing a stale one), so that a run
+    // killed outright (SIGKILL, a power cut) leaves a summary that claims nothing it did not finish.
+    write_json_atomically(summary_file, running_summary_json(c_));
+    try {
+      integrate();
+    } catch (const std::exception& e) {
+      write_failed_summary(summary_file, e);
+      throw;
+    }
+    nlohmann::json summary = this->summary();
+    write_json_atomically(summary_file, summary);
+    return summary;
+  }
+
+ private:
+  void integrate() {
+    scene_ = std::make_unique<SceneModel>(load_run_scene(c_, options_.out_dir, options_.progress));
+    require_valid_elements(*scene_);
+    record_.mesh_s = seconds_since(start_);
+    stop_if_asked(times_.front());
+    const TetMesh& mesh = scene_->mesh;
+
+    const PetscSession petsc(options_.petsc_options);
+    material_ = std::make_unique<material::Material>(material::material_from_case(c_));
+    const auto system = mechanics::MechanicsSystem::from_case(c_, mesh);
+    needle_ = NeedleOutput::attach(c_, mesh, *system, material_->instantaneous_shear_modulus(), options_.head_tilt);
+    scene_loads_ = MeshSceneLoads::attach(c_, mesh, *system, material_->instantaneous_shear_modulus());
     // The needle's PETSc solvers go before the session does, also when the run fails.
     const struct ReleaseNeedleSolvers {
       NeedleOutput* needle;
       ~ReleaseNeedleSolvers() {
         if (needle) needle->release_solvers();
       }
-    } release_needle_solvers{needle.get()};
-    record.dofs = system->local_size();
-    record.displacement_dofs = system->displacement_dofs();
-    record.surfaces = reaction_surfaces(mesh, system->dof_map());
-    const fields::TissueFieldEvaluator evaluator(*system, mesh, c.real("output.density_kg_per_m3"));
-    safety = std::make_unique<SafetyReport>(c, mesh, evaluator);
+    } release_needle_solvers{needle_.get()};
+    record_.dofs = system->local_size();
+    record_.displacement_dofs = system->displacement_dofs();
+    record_.surfaces = reaction_surfaces(mesh, system->dof_map());
+    const fields::TissueFieldEvaluator evaluator(*system, mesh, c_.real("output.density_kg_per_m3"));
+    safety_ = std::make_unique<SafetyReport>(c_, mesh, evaluator);
 
     std::vector<output::FieldSpec> specs = field_specs();
-    if (needle) for (auto& spec : NeedleOutput::field_specs()) specs.push_back(std::move(spec));
-    output::ResultFile file(options.out_dir / "result.h5", mesh, c.to_toml(), specs, times.size());
-    HistoryCsv history(options.out_dir / "history.csv", record.surfaces,
-                       safety->history_header() + (needle ? needle->history_header() : "") +
-                           (scene_loads ? scene_loads->history_header() : ""));
+    if (needle_) for (auto& spec : NeedleOutput::field_specs()) specs.push_back(std::move(spec));
+    output::ResultFile file(options_.out_dir / "result.h5", mesh, c_.to_toml(), specs, times_.size());
+    HistoryCsv history(options_.out_dir / "history.csv", record_.surfaces,
+                       safety_->history_header() + (needle_ ? needle_->history_header() : "") +
+                           (scene_loads_ ? scene_loads_->history_header() : ""));
     std::array<std::vector<double>, kScalarQuantities> max_over_time;
     for (auto& cells : max_over_time) cells.assign(mesh.tet_count(), 0.0);
+    PassOutputs outputs{evaluator, file, history, max_over_time};
 
-    IdaIntegrator integrator(*system, ida_options_from_case(c), times.front(), PETSC_COMM_SELF);
-    {
-      Vec atol = nullptr;
-      petsc_check(VecDuplicate(integrator.state(), &atol), "VecDuplicate");
-      system->absolute_tolerances(atol, c.real("integration.absolute_tolerance"),
-                                  c.real("integration.viscous_stress_absolute_tolerance_pa"),
-                                  c.real("integration.pressure_absolute_tolerance_pa"));
-      integrator.set_absolute_tolerances(atol);
-      VecDestroy(&atol);
-    }
-    if (times.size() > 1) {
-      // The needle starts moving at t0 while the tissue rests: start IDA from the rates of a
-      // probe step a millionth of the first output interval long (ida_integrator.hpp).
-      const double horizon = times[1] - times[0];
-      record.initial_rates = integrator.make_initial_rates_consistent(1e-6 * horizon, horizon);
-      if (!record.initial_rates.converged && options.progress)
-        fmt::print(options.progress, "run: note: the probe step for consistent initial rates did not converge at "
-                   "every unknown (largest weighted update {:.3g}); IDA starts from the tissue at rest, and the rates "
-                   "reported at t = 0 are zero\n", record.initial_rates.last_update);
-    }
+    IdaIntegrator integrator(*system, ida_options_from_case(c_), times_.front(), PETSC_COMM_SELF);
+    prepare_integrator(integrator, *system);
+    last_report_ = Clock::now();
     double integration_s = 0.0;
-    // Long output intervals still report progress: a line per accepted step, at most every few seconds.
-    auto last_report = Clock::now();
-    const auto report_step = [&](double t_step) {
-      stop_if_asked(t_step);
-      if (!options.progress || seconds_since(last_report) < kStepReportSeconds) return;
-      last_report = Clock::now();
-      const IdaCounters k = integrator.counters();
-      const auto& r = system->rejections();
-      fmt::print(options.progress, "run:   t = {:.6g} s  step {:.3g} s  order {}  steps {}  Newton its {}  "
-                 "convergence failures {}  error-test failures {}  inverted elements {}+{}  failed solves {}\n",
-                 t_step, k.last_step, k.last_order, k.steps, k.newton_iterations, k.newton_convergence_failures,
-                 k.error_test_failures, r.inverted_residuals, r.inverted_jacobians,
-                 r.failed_factorisations + r.failed_solves);
-      std::fflush(options.progress);
-    };
-    const auto record_solver_counts = [&] {
-      record.counters = integrator.counters();
-      record.rejections = system->rejections();
-      record.factorisations = system->factorisations();
-    };
-    const double inversion_s = (c.text("scene.kind") == "block" ? mechanics::block_inversion_time_s(c) : std::nullopt)
+    const double inversion_s = (c_.text("scene.kind") == "block" ? mechanics::block_inversion_time_s(c_) : std::nullopt)
                                    .value_or(std::numeric_limits<double>::infinity());
-    for (const double t : times) {
+    for (const double t : times_) {
       stop_if_asked(integrator.time());
       const auto step_start = Clock::now();
       if (t >= inversion_s)
-        throw c.error("block.applied_gradient",
-                      fmt::format("the applied field turns the block inside out at t = {:.4g} s (det F <= 0); the "
-                                  "output times before it are kept", inversion_s));
+        throw c_.error("block.applied_gradient",
+                       fmt::format("the applied field turns the block inside out at t = {:.4g} s (det F <= 0); the "
+                                   "output times before it are kept", inversion_s));
       try {
-        if (t > integrator.time()) integrator.advance_to(t, report_step);
+        if (t > integrator.time())
+          integrator.advance_to(t, [&](double t_step) { report_step(integrator, *system, t_step); });
       } catch (const std::exception&) {
-        record_solver_counts();  // the failed run's summary shows the failed attempts
+        record_solver_counts(integrator, *system);  // the failed run's summary shows the failed attempts
         throw;
       }
       integration_s += seconds_since(step_start);
-
-      const auto output_start = Clock::now();
-      const fields::TissueFields f = evaluator.evaluate(integrator.state(), integrator.state_rate());
-      std::vector<std::span<const double>> values{f.displacement, f.velocity, f.cauchy_stress};
-      for (const auto& cells : f.cell_maximum) values.emplace_back(cells);
-      for (int q = 0; q < kScalarQuantities; ++q) {
-        for (std::size_t e = 0; e < mesh.tet_count(); ++e)
-          max_over_time[q][e] = std::max(max_over_time[q][e], f.cell_maximum[q][e]);
-        values.emplace_back(max_over_time[q]);
-        record.maxima[q].update(f.maximum[q].value, t, f.maximum[q].position);
-      }
-      if (needle) {
-        needle->evaluate(t, integrator.state(), integrator.state_rate());
-        values.emplace_back(needle->pressure());
-        values.emplace_back(needle->slip());
-      }
-      file.append_time(t, values);
-      record.time_reached_s = t;
-      record.output_times_written = file.completed_times();
-
-      auto resultants = system->resultants(integrator.state(), record.surfaces);
-      record.reactions = std::move(resultants.reactions);
-      record.elastic_energy_j = resultants.elastic_energy;
-      if (record.elastic_energy_j > 0.0)
-        record.max_kinetic_to_elastic = std::max(record.max_kinetic_to_elastic, f.kinetic_energy / record.elastic_energy_j);
-      record_solver_counts();
-      safety->add_time(t, f);
-      history.row(t, record.counters, f, record.reactions, record.elastic_energy_j,
-                  safety->history_cells() + (needle ? needle->history_cells() : "") +
-                      (scene_loads ? scene_loads->history_cells(t, integrator.state(), integrator.state_rate()) : ""));
-      record.output_s += seconds_since(output_start);
-      record.integration_s = integration_s;
+      write_output_time(t, integrator, *system, outputs);
+      record_.integration_s = integration_s;
       // By the first output every solver has been set up and has solved (the initial-rates
       // probe, the needle's fields): an option after -- that none of them read is a mistake.
-      if (t == times.front()) petsc.require_options_used();
-      print_progress(options.progress, t, times.back(), record.counters, integration_s);
+      if (t == times_.front()) petsc.require_options_used();
+      print_progress(options_.progress, t, times_.back(), record_.counters, integration_s);
     }
     file.close();
-  } catch (const std::exception& e) {
-    nlohmann::json failed = summary_json(c, material.get(), scene.get(), safety.get(), record, seconds_since(start));
-    if (needle) failed.update(needle->summary());
+  }
+
+  // Absolute tolerances per kind of unknown, and consistent initial rates: the needle starts moving
+  // at t0 while the tissue rests, so IDA starts from the rates of a probe step a millionth of the
+  // first output interval long (ida_integrator.hpp).
+  void prepare_integrator(IdaIntegrator& integrator, const mechanics::MechanicsSystem& system) {
+    Vec atol = nullptr;
+    petsc_check(VecDuplicate(integrator.state(), &atol), "VecDuplicate");
+    system.absolute_tolerances(atol, c_.real("integration.absolute_tolerance"),
+                               c_.real("integration.viscous_stress_absolute_tolerance_pa"),
+                               c_.real("integration.pressure_absolute_tolerance_pa"));
+    integrator.set_absolute_tolerances(atol);
+    VecDestroy(&atol);
+    if (times_.size() < 2) return;
+    const double horizon = times_[1] - times_[0];
+    record_.initial_rates = integrator.make_initial_rates_consistent(1e-6 * horizon, horizon);
+    if (!record_.initial_rates.converged && options_.progress)
+      fmt::print(options_.progress, "run: note: the probe step for consistent initial rates did not converge at "
+                 "every unknown (largest weighted update {:.3g}); IDA starts from the tissue at rest, and the rates "
+                 "reported at t = 0 are zero\n", record_.initial_rates.last_update);
+  }
+
+  // After each accepted step: a stop request ends the run here; long output intervals still report
+  // progress, a line per accepted step at most every few seconds.
+  void report_step(const IdaIntegrator& integrator, const mechanics::MechanicsSystem& system, double t_step) {
+    stop_if_asked(t_step);
+    if (!options_.progress || seconds_since(last_report_) < kStepReportSeconds) return;
+    last_report_ = Clock::now();
+    const IdaCounters k = integrator.counters();
+    const auto& r = system.rejections();
+    fmt::print(options_.progress, "run:   t = {:.6g} s  step {:.3g} s  order {}  steps {}  Newton its {}  "
+               "convergence failures {}  error-test failures {}  inverted elements {}+{}  failed solves {}\n",
+               t_step, k.last_step, k.last_order, k.steps, k.newton_iterations, k.newton_convergence_failures,
+               k.error_test_failures, r.inverted_residuals, r.inverted_jacobians, r.failed_factorisations + r.failed_solves);
+    std::fflush(options_.progress);
+  }
+
+  void record_solver_counts(const IdaIntegrator& integrator, const mechanics::MechanicsSystem& system) {
+    record_.counters = integrator.counters();
+    record_.rejections = system.rejections();
+    record_.factorisations = system.factorisations();
+  }
+
+  // The fields, maxima, needle loads, reactions and safety metrics at output time t.
+  void write_output_time(double t, const IdaIntegrator& integrator, const mechanics::MechanicsSystem& system,
+                         PassOutputs& out) {
+    const auto output_start = Clock::now();
+    const TetMesh& mesh = scene_->mesh;
+    const fields::TissueFields f = out.evaluator.evaluate(integrator.state(), integrator.state_rate());
+    std::vector<std::span<const double>> values{f.displacement, f.velocity, f.cauchy_stress};
+    for (const auto& cells : f.cell_maximum) values.emplace_back(cells);
+    for (int q = 0; q < kScalarQuantities; ++q) {
+      for (std::size_t e = 0; e < mesh.tet_count(); ++e)
+        out.max_over_time[q][e] = std::max(out.max_over_time[q][e], f.cell_maximum[q][e]);
+      values.emplace_back(out.max_over_time[q]);
+      record_.maxima[q].update(f.maximum[q].value, t, f.maximum[q].position);
+    }
+    if (needle_) {
+      needle_->evaluate(t, integrator.state(), integrator.state_rate());
+      values.emplace_back(needle_->pressure());
+      values.emplace_back(needle_->slip());
+    }
+    out.file.append_time(t, values);
+    record_.time_reached_s = t;
+    record_.output_times_written = out.file.completed_times();
+
+    auto resultants = system.resultants(integrator.state(), record_.surfaces);
+    record_.reactions = std::move(resultants.reactions);
+    record_.elastic_energy_j = resultants.elastic_energy;
+    if (record_.elastic_energy_j > 0.0)
+      record_.max_kinetic_to_elastic = std::max(record_.max_kinetic_to_elastic, f.kinetic_energy / record_.elastic_energy_j);
+    record_solver_counts(integrator, system);
+    safety_->add_time(t, f);
+    out.history.row(t, record_.counters, f, record_.reactions, record_.elastic_energy_j,
+                    safety_->history_cells() + (needle_ ? needle_->history_cells() : "") +
+                        (scene_loads_ ? scene_loads_->history_cells(t, integrator.state(), integrator.state_rate()) : ""));
+    record_.output_s += seconds_since(output_start);
+  }
+
+  // A stop request (options.stop) ends the run after the step in progress, keeping every completed
+  // output time.
+  void stop_if_asked(double t) const {
+    if (!options_.stop || !options_.stop->load()) return;
+    throw Interrupted(InterruptGuard::signal_number(),
+                      fmt::format("stopped by {} at t = {:.6g} s; result.h5 and result.xdmf hold the {} output times "
+                                  "completed before", signal_name(InterruptGuard::signal_number()), t,
+                                  record_.output_times_written));
+  }
+
+  nlohmann::json summary() const {
+    nlohmann::json summary = summary_json(c_, material_.get(), scene_.get(), safety_.get(), record_, seconds_since(start_));
+    if (needle_) summary.update(needle_->summary());
+    return summary;
+  }
+
+  void write_failed_summary(const std::filesystem::path& summary_file, const std::exception& e) const {
+    nlohmann::json failed = summary();
     failed["status"] = dynamic_cast<const Interrupted*>(&e) ? "interrupted" : "failed";
     failed["error"] = e.what();
     // A run that stopped early can fail a limit but not pass one: the rest of its history is unknown.
@@ -440,13 +477,22 @@ nlohmann::json run_one_pass(const Case& c, const RunOptions& options) {
       std::filesystem::remove(summary_file, ignored);
       throw std::runtime_error(fmt::format("{} (and no summary.json: {})", e.what(), summary_error.what()));
     }
-    throw;
   }
-  nlohmann::json summary = summary_json(c, material.get(), scene.get(), safety.get(), record, seconds_since(start));
-  if (needle) summary.update(needle->summary());
-  write_json_atomically(summary_file, summary);
-  return summary;
-}
+
+  const Case& c_;
+  const RunOptions& options_;
+  const Clock::time_point start_ = Clock::now();
+  const std::vector<double> times_ = output_times(c_);  // its case errors before anything is written
+  RunRecord record_;
+  std::unique_ptr<SceneModel> scene_;
+  std::unique_ptr<material::Material> material_;
+  std::unique_ptr<NeedleOutput> needle_;
+  std::unique_ptr<MeshSceneLoads> scene_loads_;
+  std::unique_ptr<SafetyReport> safety_;
+  Clock::time_point last_report_;  // of the last progress line of an accepted step
+};
+
+nlohmann::json run_one_pass(const Case& c, const RunOptions& options) { return RunPass(c, options).run(); }
 
 }  // namespace
 
