@@ -155,27 +155,36 @@ void require_readable_msh(const std::filesystem::path& file) {
   throw std::runtime_error(fmt::format("{}: {}", file.string(), message.empty() ? "gmsh cannot read it" : message));
 }
 
-TetMesh read_msh(const std::filesystem::path& file) {
-  auto fail = [&](const std::string& reason) { return std::runtime_error(file.string() + ": " + reason); };
-  if (!std::filesystem::exists(file)) throw fail("mesh file not found");
-  TetMesh mesh;
-  GmshSession session("read");
-  std::vector<std::size_t> all_node_tags;
-  std::vector<double> all_coords;
-  std::vector<std::pair<std::string, std::vector<std::size_t>>> surfaces;  // name, node tags
+namespace {
+
+std::runtime_error mesh_error(const std::filesystem::path& file, const std::string& reason) {
+  return std::runtime_error(file.string() + ": " + reason);
+}
+
+// What the .msh holds: every node (gmsh tags, coordinates in mm) and the triangles of each
+// physical surface (node tags); the tetrahedra of each physical volume go into `mesh` (node tags,
+// regions, nodes per tet).
+struct MshContent {
+  std::vector<std::size_t> node_tags;
+  std::vector<double> coords;
+  std::vector<std::pair<std::string, std::vector<std::size_t>>> surfaces;
+};
+
+MshContent read_groups(const std::filesystem::path& file, TetMesh& mesh) {
+  MshContent content;
   int element_type = 0;
   try {
     gmsh::open(file.string());
     std::vector<double> parametric;
-    gmsh::model::mesh::getNodes(all_node_tags, all_coords, parametric, -1, -1, false, false);
+    gmsh::model::mesh::getNodes(content.node_tags, content.coords, parametric, -1, -1, false, false);
     for (const auto& group : physical_groups(3, "volume")) {
       const int region = static_cast<int>(mesh.region_names.size());
       mesh.region_names.push_back(group.name);
       for (const auto& [type, count, nodes] : group.blocks) {
         if (type != kGmshTet10 && type != kGmshTet4)
-          throw fail(fmt::format("region '{}' has gmsh element type {}; only 4- and 10-node tetrahedra are supported",
-                                 group.name, type));
-        if (element_type && element_type != type) throw fail("mixes 4- and 10-node tetrahedra");
+          throw mesh_error(file, fmt::format("region '{}' has gmsh element type {}; only 4- and 10-node tetrahedra "
+                                             "are supported", group.name, type));
+        if (element_type && element_type != type) throw mesh_error(file, "mixes 4- and 10-node tetrahedra");
         element_type = type;
         for (std::size_t tag : nodes) mesh.tet_nodes.push_back(static_cast<int>(tag));
         mesh.tet_region.insert(mesh.tet_region.end(), count, region);
@@ -185,68 +194,82 @@ TetMesh read_msh(const std::filesystem::path& file) {
       std::vector<std::size_t> face_nodes;
       for (const auto& [type, count, nodes] : group.blocks) {
         if (type != kGmshTri3 && type != kGmshTri6)
-          throw fail(fmt::format("surface '{}' has gmsh element type {}; expected triangles", group.name, type));
+          throw mesh_error(file, fmt::format("surface '{}' has gmsh element type {}; expected triangles", group.name, type));
         face_nodes.insert(face_nodes.end(), nodes.begin(), nodes.end());
       }
-      surfaces.emplace_back(group.name, std::move(face_nodes));
+      content.surfaces.emplace_back(group.name, std::move(face_nodes));
     }
   } catch (const std::string& message) {
-    throw fail("gmsh: " + message);
+    throw mesh_error(file, "gmsh: " + message);
   }
   if (std::none_of(mesh.region_names.begin(), mesh.region_names.end(), is_tissue))
-    throw fail("no physical volume whose name starts with 'tissue'");
-  if (mesh.tet_region.empty()) throw fail("no tetrahedra in the physical volumes");
+    throw mesh_error(file, "no physical volume whose name starts with 'tissue'");
+  if (mesh.tet_region.empty()) throw mesh_error(file, "no tetrahedra in the physical volumes");
   mesh.nodes_per_tet = element_type == kGmshTet10 ? 10 : 4;
+  return content;
+}
 
-  // Compact numbering over the nodes the tetrahedra use, in gmsh's node order.
+// Numbers the nodes the tetrahedra use compactly, in gmsh's node order, and stores them (metres)
+// in `mesh`, its tetrahedra renumbered. Returns each gmsh tag's node (-1: in no tetrahedron).
+std::unordered_map<std::size_t, int> number_nodes(const MshContent& content, TetMesh& mesh) {
   std::unordered_map<std::size_t, std::size_t> position;
-  for (std::size_t i = 0; i < all_node_tags.size(); ++i) position[all_node_tags[i]] = i;
-  std::vector<int> index_of(all_node_tags.size(), -1);
+  for (std::size_t i = 0; i < content.node_tags.size(); ++i) position[content.node_tags[i]] = i;
+  std::vector<int> index_of(content.node_tags.size(), -1);
   for (int& tag : mesh.tet_nodes) {
     const std::size_t p = position.at(static_cast<std::size_t>(tag));
     if (index_of[p] < 0) index_of[p] = 0;
     tag = static_cast<int>(p);
   }
   int next = 0;
+  const auto& x = content.coords;
   for (std::size_t p = 0; p < index_of.size(); ++p)
     if (index_of[p] == 0) {
       index_of[p] = next++;
-      mesh.nodes.push_back({all_coords[3 * p] * kMPerMm, all_coords[3 * p + 1] * kMPerMm, all_coords[3 * p + 2] * kMPerMm});
+      mesh.nodes.push_back({x[3 * p] * kMPerMm, x[3 * p + 1] * kMPerMm, x[3 * p + 2] * kMPerMm});
     }
   for (int& p : mesh.tet_nodes) p = index_of[p];
+  std::unordered_map<std::size_t, int> node_of_tag;
+  for (const auto& [tag, p] : position) node_of_tag[tag] = index_of[p];
+  return node_of_tag;
+}
 
-  // Every tet face, with its owner tet: tissue tets first (faces are oriented outward of the
-  // tissue), or needle tets first for surfaces named "needle*" (outward of the needle).
-  using FaceOwners = std::unordered_map<FaceKey, std::size_t, FaceKeyHash>;
-  auto owners_preferring = [&](bool tissue_first) {
-    FaceOwners owner;
-    static const int face_corners[4][3] = {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {1, 2, 3}};
-    for (int pass = 0; pass < 2; ++pass)
-      for (std::size_t e = 0; e < mesh.tet_count(); ++e) {
-        if (is_tissue(mesh.region_names[mesh.tet_region[e]]) != ((pass == 0) == tissue_first)) continue;
-        const int* t = mesh.tet(e);
-        for (const auto& f : face_corners) owner.emplace(key_of(t[f[0]], t[f[1]], t[f[2]]), e);
-      }
-    return owner;
-  };
-  const FaceOwners tissue_owner = owners_preferring(true);
+// Every tet face, with its owner tet: tissue tets first (faces are oriented outward of the
+// tissue), or needle tets first (outward of the needle).
+using FaceOwners = std::unordered_map<FaceKey, std::size_t, FaceKeyHash>;
+FaceOwners face_owners(const TetMesh& mesh, bool tissue_first) {
+  FaceOwners owner;
+  static const int face_corners[4][3] = {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {1, 2, 3}};
+  for (int pass = 0; pass < 2; ++pass)
+    for (std::size_t e = 0; e < mesh.tet_count(); ++e) {
+      if (is_tissue(mesh.region_names[mesh.tet_region[e]]) != ((pass == 0) == tissue_first)) continue;
+      const int* t = mesh.tet(e);
+      for (const auto& f : face_corners) owner.emplace(key_of(t[f[0]], t[f[1]], t[f[2]]), e);
+    }
+  return owner;
+}
+
+// The surface groups as faces of `mesh`, oriented outward of the tissue (of the needle for
+// surfaces named "needle*").
+void add_surfaces(const std::filesystem::path& file, const MshContent& content,
+                  const std::unordered_map<std::size_t, int>& node_of_tag, TetMesh& mesh) {
+  const FaceOwners tissue_owner = face_owners(mesh, true);
   FaceOwners needle_owner;
   const int per_face = mesh.nodes_per_face();
-  for (auto& [name, tags] : surfaces) {
+  for (const auto& [name, tags] : content.surfaces) {
     std::vector<int>& faces = mesh.surface_faces[name];
     const bool needle_side = name.rfind("needle", 0) == 0;
-    if (needle_side && needle_owner.empty()) needle_owner = owners_preferring(false);
+    if (needle_side && needle_owner.empty()) needle_owner = face_owners(mesh, false);
     const FaceOwners& owner = needle_side ? needle_owner : tissue_owner;
     for (std::size_t f = 0; f + per_face <= tags.size(); f += per_face) {
       std::array<int, 6> v{};
       for (int k = 0; k < per_face; ++k) {
-        const auto it = position.find(tags[f + k]);
-        if (it == position.end() || index_of[it->second] < 0)
-          throw fail(fmt::format("surface '{}' has a node that belongs to no tetrahedron", name));
-        v[k] = index_of[it->second];
+        const auto it = node_of_tag.find(tags[f + k]);
+        if (it == node_of_tag.end() || it->second < 0)
+          throw mesh_error(file, fmt::format("surface '{}' has a node that belongs to no tetrahedron", name));
+        v[k] = it->second;
       }
       const auto own = owner.find(key_of(v[0], v[1], v[2]));
-      if (own == owner.end()) throw fail(fmt::format("surface '{}' has a face that bounds no tetrahedron", name));
+      if (own == owner.end()) throw mesh_error(file, fmt::format("surface '{}' has a face that bounds no tetrahedron", name));
       if (opposite_on_normal_side(mesh, own->second, v[0], v[1], v[2])) {
         // Flip to point outward.
         std::swap(v[1], v[2]);
@@ -255,6 +278,17 @@ TetMesh read_msh(const std::filesystem::path& file) {
       faces.insert(faces.end(), v.begin(), v.begin() + per_face);
     }
   }
+}
+
+}  // namespace
+
+TetMesh read_msh(const std::filesystem::path& file) {
+  if (!std::filesystem::exists(file)) throw mesh_error(file, "mesh file not found");
+  TetMesh mesh;
+  GmshSession session("read");
+  const MshContent content = read_groups(file, mesh);
+  const auto node_of_tag = number_nodes(content, mesh);
+  add_surfaces(file, content, node_of_tag, mesh);
   return mesh;
 }
 
