@@ -107,34 +107,12 @@ std::size_t open_rear_face(TriangleSoup& soup, double tolerance, double length) 
   return removed;
 }
 
-}  // namespace
-
-CadNeedleShape::CadNeedleShape(TriangleSoup tip, double edge_radius) : edge_radius_(edge_radius) {
-  if (!(edge_radius >= 0.0)) throw std::invalid_argument("the edge radius must not be negative");
-  if (const std::size_t open = orient_outward(tip))
-    throw std::invalid_argument("its triangulation is not closed (" + std::to_string(open) +
-                                " edges not shared by exactly two facets)");
-  tip_volume_ = enclosed_volume(tip);
-  Point3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
-  for (const auto& v : tip.vertices)
-    for (int d = 0; d < 3; ++d) lo[d] = std::min(lo[d], v[d]), hi[d] = std::max(hi[d], v[d]);
-  scale_ = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
-  if (open_rear_face(tip, kRearTolerance * scale_, kShaftExtension * scale_) == 0)
-    throw std::invalid_argument("it has no rear face on z = 0 facing -z (flush with the entry face)");
-
-  surface_ = std::make_unique<TriangleSurface>(tip);
-  if (edge_radius_ == 0.0) {
-    core_ = std::make_unique<TriangleSurface>(std::move(tip));
-    sign_reliable_.assign(core_->soup().triangles.size(), 1);
-    return;
-  }
-
-  // The offset surface: every vertex moved inwards so that its faces lie at distance ρ from the
-  // tip's.
+// The offset surface: every vertex of `tip` moved inwards by ρ m (cad_needle.hpp), so that its faces
+// lie at distance ρ from the tip's. `facet_normal`: each facet's unit normal.
+TriangleSoup offset_inwards(const TriangleSoup& tip, double edge_radius, std::vector<Point3>& facet_normal) {
   const std::size_t nv = tip.vertices.size();
   std::vector<Matrix3> normal_sum(nv, Matrix3{});
   std::vector<Point3> normal_rhs(nv, Point3{});
-  std::vector<Point3> facet_normal;
   for (const auto& t : tip.triangles) {
     Point3 n = cross(sub(tip.vertices[t[1]], tip.vertices[t[0]]), sub(tip.vertices[t[2]], tip.vertices[t[0]]));
     const double l = norm(n);
@@ -163,9 +141,39 @@ CadNeedleShape::CadNeedleShape(TriangleSoup tip, double edge_radius) : edge_radi
       const double coefficient = dot(q, normal_rhs[v]) / w[k];
       for (int i = 0; i < 3; ++i) m[i] += coefficient * q[i];
     }
-    for (int i = 0; i < 3; ++i) offset.vertices[v][i] -= edge_radius_ * m[i];
+    for (int i = 0; i < 3; ++i) offset.vertices[v][i] -= edge_radius * m[i];
+  }
+  return offset;
+}
+
+}  // namespace
+
+CadNeedleShape::CadNeedleShape(TriangleSoup tip, double edge_radius) : edge_radius_(edge_radius) {
+  if (!(edge_radius >= 0.0)) throw std::invalid_argument("the edge radius must not be negative");
+  if (const std::size_t open = orient_outward(tip))
+    throw std::invalid_argument("its triangulation is not closed (" + std::to_string(open) +
+                                " edges not shared by exactly two facets)");
+  tip_volume_ = enclosed_volume(tip);
+  Point3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+  for (const auto& v : tip.vertices)
+    for (int d = 0; d < 3; ++d) lo[d] = std::min(lo[d], v[d]), hi[d] = std::max(hi[d], v[d]);
+  scale_ = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+  if (open_rear_face(tip, kRearTolerance * scale_, kShaftExtension * scale_) == 0)
+    throw std::invalid_argument("it has no rear face on z = 0 facing -z (flush with the entry face)");
+
+  surface_ = std::make_unique<TriangleSurface>(tip);
+  if (edge_radius_ == 0.0) {
+    core_ = std::make_unique<TriangleSurface>(std::move(tip));
+    sign_reliable_.assign(core_->soup().triangles.size(), 1);
+    return;
   }
 
+  std::vector<Point3> facet_normal;
+  trim_core(tip, offset_inwards(tip, edge_radius_, facet_normal), facet_normal);
+}
+
+void CadNeedleShape::trim_core(const TriangleSoup& tip, TriangleSoup offset, const std::vector<Point3>& facet_normal) {
+  const std::size_t nv = tip.vertices.size();
   // Trimmed to the core's boundary {d(y, tip surface) = ρ}: near an edge the offset faces run on
   // past the edge of the core (by ρ tan(θ/2) at an edge whose normals differ by θ), and those
   // parts lie closer than ρ to the tip's surface. With r(y) = d(y, tip surface) - ρ, a vertex is

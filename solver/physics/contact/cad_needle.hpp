@@ -34,6 +34,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "physics/contact/needle_obstacle.hpp"
 #include "physics/contact/triangle_surface.hpp"
@@ -52,6 +53,10 @@ class CadNeedleShape final : public NeedleShape {
   const TriangleSurface& core() const { return *core_; }
 
  private:
+  // The core's triangulation: `offset` (the tip's vertices moved inwards by ρ) trimmed to
+  // {y : d(y, tip) >= ρ}; sets core_ and sign_reliable_.
+  void trim_core(const TriangleSoup& tip, TriangleSoup offset, const std::vector<Point3>& facet_normal);
+
   double edge_radius_ = 0.0, tip_volume_ = 0.0, scale_ = 0.0;
   std::unique_ptr<TriangleSurface> surface_;  // the tip's, rear face opened into the shaft tube
   std::unique_ptr<TriangleSurface> core_;     // the core's
