@@ -190,16 +190,10 @@ std::string coarse_mesh_summary(const SweepPlan& plan) {
   return fmt::format("{} of the {} possible design points: {}", coarse, possible, coarse_mesh_warning(first->coarse_mesh));
 }
 
-}  // namespace
-
-SweepOutcome run_sweep(const SweepPlan& plan, const SweepOptions& options) {
-  if (options.jobs < 1) throw std::invalid_argument("sweep: --jobs must be at least 1");
-  const LauncherRank rank = launcher_rank();
-  SweepOutcome outcome;
-  outcome.rank = rank.rank;
-  outcome.ranks = rank.size;
-  fs::create_directories(options.out_dir);
-
+// The points this rank runs, most expensive first (the ones done or impossible are counted in
+// `outcome` instead).
+std::deque<std::size_t> queue_points(const SweepPlan& plan, const SweepOptions& options, const LauncherRank& rank,
+                                     SweepOutcome& outcome) {
   std::deque<std::size_t> queue;
   std::size_t valid_index = 0;
   for (std::size_t i = 0; i < plan.points.size(); ++i) {
@@ -214,12 +208,16 @@ SweepOutcome run_sweep(const SweepPlan& plan, const SweepOptions& options) {
     if (status == "completed" || (status == "failed" && !options.retry_failed)) ++outcome.already_done;
     else queue.push_back(i);
   }
-
   std::stable_sort(queue.begin(), queue.end(), [&](std::size_t a, std::size_t b) {
     return expected_cost(plan.points[a]) > expected_cost(plan.points[b]);
   });
+  return queue;
+}
 
-  Progress progress(options.progress, options.label, rank, outcome.total, outcome.already_done);
+// The lines before the first run: impossible points with their rules, the counts, a coarse-mesh
+// warning (returned, for the last line too), the folder names' legend, and with --list the queue.
+std::string announce(Progress& progress, const SweepPlan& plan, const SweepOptions& options, const LauncherRank& rank,
+                     const SweepOutcome& outcome, const std::deque<std::size_t>& queue) {
   if (rank.rank == 0)
     for (const auto& p : plan.points)
       for (const auto& v : p.violations) progress.line(fmt::format("impossible, not run: {}: rule '{}': {}", p.name, v.rule, v.message));
@@ -238,6 +236,49 @@ SweepOutcome run_sweep(const SweepPlan& plan, const SweepOptions& options) {
   if (options.list_only)
     for (std::size_t i : queue) progress.line(fmt::format("to run: {} ({})", plan.points[i].name,
                                                           fmt::join(plan.points[i].grids, ",")));
+  return coarse_warning;
+}
+
+// Starts `needlefem run` on a point in its own folder (its case.toml written there, a stale
+// summary removed); returns the child's pid.
+pid_t start_point(const DesignPoint& p, const SweepOptions& options, const std::vector<std::string>& environment) {
+  const fs::path dir = point_directory(options.out_dir, p);
+  fs::create_directories(dir);
+  fs::remove(dir / "summary.json");
+  write_file_atomically(dir / "case.toml", p.case_text);
+  std::vector<std::string> argv{options.executable.string(), "run", (dir / "case.toml").string(), "--out", dir.string()};
+  if (!options.backend_options.empty()) {
+    argv.push_back("--");
+    argv.insert(argv.end(), options.backend_options.begin(), options.backend_options.end());
+  }
+  return start_child(argv, environment, dir / "run.log");
+}
+
+// A point's run ended with `status`: its record (a failure recorded for it when it wrote no
+// summary of its own).
+PointRecord finished_point(const DesignPoint& p, const SweepOptions& options, int status) {
+  const fs::path dir = point_directory(options.out_dir, p);
+  PointRecord record = read_point(p, options.out_dir);
+  if (record.status == "pending") {
+    record = {"failed", nullptr, last_error(dir / "run.log", status)};
+    write_file_atomically(dir / "summary.json",
+                          nlohmann::json{{"status", "failed"}, {"error", record.error}, {"case", p.resolved}}.dump(2) + "\n");
+  }
+  return record;
+}
+
+}  // namespace
+
+SweepOutcome run_sweep(const SweepPlan& plan, const SweepOptions& options) {
+  if (options.jobs < 1) throw std::invalid_argument("sweep: --jobs must be at least 1");
+  const LauncherRank rank = launcher_rank();
+  SweepOutcome outcome;
+  outcome.rank = rank.rank;
+  outcome.ranks = rank.size;
+  fs::create_directories(options.out_dir);
+  std::deque<std::size_t> queue = queue_points(plan, options, rank, outcome);
+  Progress progress(options.progress, options.label, rank, outcome.total, outcome.already_done);
+  const std::string coarse_warning = announce(progress, plan, options, rank, outcome, queue);
   if (options.write_tables) write_tables(plan, options.out_dir);
   if (options.list_only) return outcome;
 
@@ -250,16 +291,7 @@ SweepOutcome run_sweep(const SweepPlan& plan, const SweepOptions& options) {
   while (!queue.empty() || !running.empty()) {
     while (!queue.empty() && running.size() < static_cast<std::size_t>(options.jobs)) {
       const DesignPoint& p = plan.points[queue.front()];
-      const fs::path dir = point_directory(options.out_dir, p);
-      fs::create_directories(dir);
-      fs::remove(dir / "summary.json");
-      write_file_atomically(dir / "case.toml", p.case_text);
-      std::vector<std::string> argv{options.executable.string(), "run", (dir / "case.toml").string(), "--out", dir.string()};
-      if (!options.backend_options.empty()) {
-        argv.push_back("--");
-        argv.insert(argv.end(), options.backend_options.begin(), options.backend_options.end());
-      }
-      running[start_child(argv, environment, dir / "run.log")] = {queue.front(), Clock::now()};
+      running[start_point(p, options, environment)] = {queue.front(), Clock::now()};
       queue.pop_front();
       progress.line(fmt::format("started {}", p.name));
     }
@@ -274,14 +306,7 @@ SweepOutcome run_sweep(const SweepPlan& plan, const SweepOptions& options) {
     const DesignPoint& p = plan.points[it->second.point];
     const double seconds = std::chrono::duration<double>(Clock::now() - it->second.start).count();
     running.erase(it);
-
-    const fs::path dir = point_directory(options.out_dir, p);
-    PointRecord record = read_point(p, options.out_dir);
-    if (record.status == "pending") {  // no summary of its own: record the failure for it
-      record = {"failed", nullptr, last_error(dir / "run.log", status)};
-      write_file_atomically(dir / "summary.json",
-                            nlohmann::json{{"status", "failed"}, {"error", record.error}, {"case", p.resolved}}.dump(2) + "\n");
-    }
+    const PointRecord record = finished_point(p, options, status);
     if (record.status == "completed") ++outcome.completed;
     else ++outcome.failed;
     if (options.write_tables) write_tables(plan, options.out_dir);
