@@ -27,6 +27,8 @@
 //      physics/contact/penalty_contact.hpp takes those gaps as the start;
 //   4. a tet all that leaves inverted or nearly so (scaled Jacobian below 0.05): each free vertex
 //      of it moves by a compass search on the worst straight-sided shape around it.
+//   5. a TET10 tet still inverted has every edge made straight (the curvature of its interior
+//      edges, from gmsh's high-order optimiser, is then what inverts it).
 // The moves point into the needle (the rounded needle lies inside the sharp one), so the tissue
 // tets at the edges mostly grow; the caller checks every tet's Jacobian afterwards
 // (mesh_quality.hpp).
@@ -52,6 +54,7 @@ struct CavityRounding {
   std::size_t relaxed_edges = 0;       // cavity edges of poor tets left with the mesher's curve
   std::size_t straightened_edges = 0;  // ... and of those still poor, made straight
   std::size_t untangled_vertices = 0;  // free vertices of tets still (nearly) inverted, searched further
+  std::size_t straightened_tets = 0;   // TET10 tets still inverted, every edge of them made straight
   double tissue_volume_gained_m3 = 0.0;  // where the needle's edges were rounded off (set by the caller)
 };
 

@@ -88,9 +88,16 @@ SceneModel load_scene_model(const Case& c, const std::filesystem::path& out_dir,
 }
 
 void require_valid_elements(const SceneModel& scene) {
-  if (const auto bad = scene.quality.inverted())
-    throw std::runtime_error(fmt::format("{}: {} tetrahedra have a non-positive Jacobian determinant",
-                                         scene.msh_file.string(), bad));
+  const auto bad = scene.quality.inverted();
+  if (!bad) return;
+  std::string reason = fmt::format("{}: {} tetrahedra have a non-positive Jacobian determinant", scene.msh_file.string(), bad);
+  // The rounding moves the cavity most at a point or edge sharper than its edge radius: that, not
+  // the mesher, is then what the user can change.
+  if (scene.cavity_rounding.moved_nodes > 0)
+    reason += fmt::format(" after the cavity was rounded to the needle's edges (needle.edge_radius_um; it moved the "
+                          "cavity by up to {:.3g} mm: a sharp point rounded with a smaller radius moves it less)",
+                          scene.cavity_rounding.largest_move_m * 1e3);
+  throw std::runtime_error(reason);
 }
 
 }  // namespace needlefem
