@@ -32,14 +32,14 @@ double largest_magnitude(const std::vector<double>& values) {
 
 std::unique_ptr<NeedleOutput> NeedleOutput::attach(const Case& input, const TetMesh& mesh,
                                                    mechanics::MechanicsSystem& system, double reference_modulus,
-                                                   std::shared_ptr<const contact::HeadTilt> tilt) {
-  if (!contact::needle_contact_enabled(input)) return nullptr;
-  return std::make_unique<NeedleOutput>(input, mesh, system, reference_modulus, std::move(tilt));
+                                                   std::shared_ptr<const contact::Needle> needle) {
+  if (!needle) return nullptr;
+  return std::make_unique<NeedleOutput>(input, mesh, system, reference_modulus, std::move(needle));
 }
 
 NeedleOutput::NeedleOutput(const Case& input, const TetMesh& mesh, mechanics::MechanicsSystem& system,
-                           double reference_modulus, std::shared_ptr<const contact::HeadTilt> tilt)
-    : system_(system), contact_(input, mesh, reference_modulus, std::move(tilt)), initial_gap_(contact_.initial_gap()) {
+                           double reference_modulus, std::shared_ptr<const contact::Needle> needle)
+    : system_(system), contact_(input, mesh, reference_modulus, std::move(needle)), initial_gap_(contact_.initial_gap()) {
   system.add_surface_load(contact_.surface_load());
   if (!input.flag("needle.deflection_check")) return;
   if (contact_.hinged_needle())

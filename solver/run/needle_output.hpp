@@ -46,15 +46,14 @@ namespace needlefem::run {
 
 class NeedleOutput {
  public:
-  // nullptr unless needle contact is on for this case; otherwise builds the contact and adds it
-  // to `system` (both `mesh` and `system` must outlive the result).
-  // `tilt`: the compliant tip's head tilt (null: not turned).
+  // nullptr without a needle (needle contact off for this case); otherwise builds the contact with
+  // `needle` and adds it to `system` (both `mesh` and `system` must outlive the result).
   static std::unique_ptr<NeedleOutput> attach(const Case& input, const TetMesh& mesh,
                                               mechanics::MechanicsSystem& system, double reference_modulus,
-                                              std::shared_ptr<const contact::HeadTilt> tilt = nullptr);
+                                              std::shared_ptr<const contact::Needle> needle);
 
   NeedleOutput(const Case& input, const TetMesh& mesh, mechanics::MechanicsSystem& system,
-               double reference_modulus, std::shared_ptr<const contact::HeadTilt> tilt = nullptr);
+               double reference_modulus, std::shared_ptr<const contact::Needle> needle);
 
   static std::vector<output::FieldSpec> field_specs();
   std::string history_header() const;  // starts with a comma

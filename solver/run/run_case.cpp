@@ -259,9 +259,11 @@ void print_progress(std::FILE* stream, double t, double end, const IdaCounters& 
 
 }  // namespace
 
-SceneModel load_run_scene(const Case& c, const std::filesystem::path& out_dir, std::FILE* progress) {
+SceneModel load_run_scene(const Case& c, const std::filesystem::path& out_dir, std::FILE* progress,
+                          std::shared_ptr<const contact::Needle>* needle) {
   SceneModel scene = load_scene_model(c, out_dir, progress);
-  scene.cavity_rounding = contact::round_cavity_to_needle(c, scene.mesh);
+  auto built = contact::round_cavity_to_needle(c, scene.mesh, scene.cavity_rounding);
+  if (needle) *needle = std::move(built);
   if (scene.cavity_rounding.moved_nodes == 0) return scene;
   const double tissue_before = scene.quality.volume_of_regions_starting_with("tissue");
   scene.quality = measure_quality(scene.mesh);
@@ -306,7 +308,8 @@ class RunPass {
 
  private:
   void integrate() {
-    scene_ = std::make_unique<SceneModel>(load_run_scene(c_, options_.out_dir, options_.progress));
+    std::shared_ptr<const contact::Needle> needle;  // the one the cavity was rounded to, untilted
+    scene_ = std::make_unique<SceneModel>(load_run_scene(c_, options_.out_dir, options_.progress, &needle));
     require_valid_elements(*scene_);
     record_.mesh_s = seconds_since(start_);
     stop_if_asked(times_.front());
@@ -315,7 +318,8 @@ class RunPass {
     const PetscSession petsc(options_.petsc_options);
     material_ = std::make_unique<material::Material>(material::material_from_case(c_));
     const auto system = mechanics::MechanicsSystem::from_case(c_, mesh);
-    needle_ = NeedleOutput::attach(c_, mesh, *system, material_->instantaneous_shear_modulus(), options_.head_tilt);
+    if (needle && options_.head_tilt) needle = contact::needle_from_case(c_, nullptr, options_.head_tilt);
+    needle_ = NeedleOutput::attach(c_, mesh, *system, material_->instantaneous_shear_modulus(), std::move(needle));
     scene_loads_ = MeshSceneLoads::attach(c_, mesh, *system, material_->instantaneous_shear_modulus());
     // The needle's PETSc solvers go before the session does, also when the run fails.
     const struct ReleaseNeedleSolvers {

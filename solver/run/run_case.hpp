@@ -32,6 +32,7 @@ class Case;
 }
 namespace needlefem::contact {
 class HeadTilt;
+class Needle;
 }
 
 namespace needlefem::run {
@@ -49,8 +50,9 @@ struct RunOptions {
 
 // The scene a run solves: load_scene_model's mesh with its cavity moved onto the rounded needle
 // in contact (contact::round_cavity_to_needle) and its quality measured again. `needlefem mesh`
-// shows the same mesh.
-SceneModel load_run_scene(const Case& c, const std::filesystem::path& out_dir, std::FILE* progress);
+// shows the same mesh. `needle` (optional): set to that needle (null without needle contact).
+SceneModel load_run_scene(const Case& c, const std::filesystem::path& out_dir, std::FILE* progress,
+                          std::shared_ptr<const contact::Needle>* needle = nullptr);
 
 // Returns the summary written to out_dir/summary.json. The compliant tip in frictional contact
 // runs as the passes of run/hinge_coupling.hpp.

@@ -103,22 +103,22 @@ std::shared_ptr<const Needle> needle_from_case(const Case& input, std::shared_pt
   return std::make_shared<RigidNeedle>(tip.bevel, motion, edge_radius);
 }
 
-CavityRounding round_cavity_to_needle(const Case& input, TetMesh& mesh) {
-  if (!needle_contact_enabled(input)) return {};
+std::shared_ptr<const Needle> round_cavity_to_needle(const Case& input, TetMesh& mesh, CavityRounding& rounding) {
+  if (!needle_contact_enabled(input)) return nullptr;
   const bool user_mesh = !input.path("scene.mesh_file").empty();
   std::shared_ptr<const Needle> sharp;  // without the edge rounding, as the cavity was meshed
-  const std::shared_ptr<const Needle> needle = needle_from_case(input, user_mesh ? &sharp : nullptr);
+  std::shared_ptr<const Needle> needle = needle_from_case(input, user_mesh ? &sharp : nullptr);
   if (user_mesh) require_cavity_on_needle(input, mesh, *sharp);
-  return round_cavity(mesh, [&](const Point3& X) {
+  rounding = round_cavity(mesh, [&](const Point3& X) {
     const ObstacleProjection p = needle->project(X, 0.0);
     return Point3{X[0] - p.gap * p.normal[0], X[1] - p.gap * p.normal[1], X[2] - p.gap * p.normal[2]};
   });
+  return needle;
 }
 
 NeedleContact::NeedleContact(const Case& input, const TetMesh& mesh, double reference_modulus,
-                             std::shared_ptr<const HeadTilt> tilt)
-    : mesh_(mesh) {
-  needle_ = needle_from_case(input, nullptr, std::move(tilt));
+                             std::shared_ptr<const Needle> needle)
+    : mesh_(mesh), needle_(std::move(needle)) {
   ContactParameters parameters = contact_parameters_from_case(input, reference_modulus);
   parameters.reference_gap_offset = true;  // the cavity is meshed from the needle's shape
   smoothing_pressure_ = parameters.penalty_smoothing * reference_modulus;

@@ -59,8 +59,9 @@ bool needle_contact_enabled(const Case& input);
 // With needle contact, moves the mesh's cavity onto the rounded needle of the case at t = 0
 // (model/cavity_rounding.hpp), a user's mesh (scene.mesh_file) once its cavity has been checked
 // against the sharp needle (CaseError naming the largest offset); a tied or absent needle leaves
-// the mesh as it is. Returns what moved.
-CavityRounding round_cavity_to_needle(const Case& input, TetMesh& mesh);
+// the mesh as it is. Sets `rounding` to what moved and returns the needle (null without needle
+// contact), to be the needle in contact too: a CAD tip's triangulation and core are then built once.
+std::shared_ptr<const Needle> round_cavity_to_needle(const Case& input, TetMesh& mesh, CavityRounding& rounding);
 
 struct NeedleLoad {
   Point3 force{};   // on the needle, N
@@ -76,11 +77,9 @@ struct GapRange {
 
 class NeedleContact {
  public:
-  // The needle of the case's [needle] and [motion] (a compliant tip's head turned by `tilt`), the
-  // cavity of `mesh` (which must outlive this), [contact] parameters; μ₀ = the tissue's
-  // instantaneous shear modulus.
-  NeedleContact(const Case& input, const TetMesh& mesh, double reference_modulus,
-                std::shared_ptr<const HeadTilt> tilt = nullptr);
+  // `needle` (needle_from_case: the case's [needle] and [motion]), the cavity of `mesh` (which
+  // must outlive this), [contact] parameters; μ₀ = the tissue's instantaneous shear modulus.
+  NeedleContact(const Case& input, const TetMesh& mesh, double reference_modulus, std::shared_ptr<const Needle> needle);
 
   std::shared_ptr<mechanics::SurfaceLoad> surface_load() const { return contact_; }
   const Needle& needle() const { return *needle_; }
