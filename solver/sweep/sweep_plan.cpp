@@ -347,6 +347,72 @@ void add_unique(std::vector<std::string>& list, const std::string& item) {
   if (std::find(list.begin(), list.end(), item) == list.end()) list.push_back(item);
 }
 
+// The sweep file's grids: [axes] and [linked] as the main one, then each [[grid]].
+std::vector<Grid> read_grids(const SweepFile& file, const toml::table& root) {
+  std::vector<Grid> grids;
+  if (root.contains("axes") || root.contains("linked"))
+    grids.push_back(file.grid(nullptr, root.get("axes"), root.get("linked"), "", "main"));
+  if (const auto* list = root.get("grid")) {
+    if (!list->is_array_of_tables()) file.fail("grid", "expected [[grid]] tables");
+    std::size_t index = 0;
+    for (const auto& table : *list->as_array()) {
+      const std::string where = fmt::format("grid[{}].", index);
+      grids.push_back(file.grid(*table.as_table(), where, fmt::format("grid{}", ++index)));
+    }
+  }
+  if (grids.empty()) file.fail("axes", "no design points: give [axes], [linked] or [[grid]] tables");
+  return grids;
+}
+
+// What every point of a sweep starts from: the base case's keys, the sweep's [set] over them,
+// the sweep's folder (mesh files are relative to it) and the header of each point's case.toml.
+struct PointBase {
+  FlatTable base;
+  FlatTable fixed;
+  fs::path sweep_dir;
+  std::string header;
+};
+
+// Appends grid g's design points to the plan. A point that several grids share is listed once,
+// with each grid's name; two different points with one folder name are an error.
+void add_grid_points(const SweepFile& file, const Grid& g, const PointBase& start,
+                     std::map<std::string, std::size_t>& by_name, SweepPlan& plan) {
+  std::size_t count = 1;
+  for (const auto& axis : g.axes) count *= axis.size();
+  for (std::size_t flat_index = 0; flat_index < count; ++flat_index) {
+    FlatTable point = start.base;
+    overlay(point, start.fixed);
+    FlatTable assigned = g.set;
+    std::size_t rest = flat_index;
+    for (auto axis = g.axes.rbegin(); axis != g.axes.rend(); ++axis) {  // last axis varies fastest
+      const std::size_t i = rest % axis->size();
+      rest /= axis->size();
+      for (std::size_t k = 0; k < axis->keys.size(); ++k) assigned.insert_or_assign(axis->keys[k], axis->values[k][i]);
+    }
+    absolute_mesh_file(assigned, start.sweep_dir);
+    overlay(point, assigned);
+
+    nlohmann::json values;
+    for (const std::string& key : plan.swept_keys) {
+      const toml::node* given = point.get(key);
+      values[key] = given ? json_value(*given) : json_default(*find_key(key));
+    }
+    std::string name = point_name(plan.name_labels, plan.swept_keys, values);
+    DesignPoint p = design_point(point, std::move(name), std::move(values), start.header, plan.sweep_file.string());
+    p.grids = {g.name};
+
+    const auto [it, inserted] = by_name.emplace(p.name, plan.points.size());
+    if (inserted) {
+      plan.points.push_back(std::move(p));
+      continue;
+    }
+    DesignPoint& same = plan.points[it->second];
+    if (same.resolved != p.resolved || (same.resolved.is_null() && same.case_text != p.case_text))
+      file.fail(plan.swept_keys.front(), fmt::format("two different design points share the directory name '{}'", p.name));
+    add_unique(same.grids, g.name);
+  }
+}
+
 }  // namespace
 
 SweepPlan load_sweep(const fs::path& sweep_file) {
@@ -370,18 +436,7 @@ SweepPlan load_sweep(const fs::path& sweep_file) {
   FlatTable fixed = file.flatten(root.get("set"), "set");
   absolute_mesh_file(fixed, sweep_dir);
 
-  std::vector<Grid> grids;
-  if (root.contains("axes") || root.contains("linked"))
-    grids.push_back(file.grid(nullptr, root.get("axes"), root.get("linked"), "", "main"));
-  if (const auto* list = root.get("grid")) {
-    if (!list->is_array_of_tables()) file.fail("grid", "expected [[grid]] tables");
-    std::size_t index = 0;
-    for (const auto& table : *list->as_array()) {
-      const std::string where = fmt::format("grid[{}].", index);
-      grids.push_back(file.grid(*table.as_table(), where, fmt::format("grid{}", ++index)));
-    }
-  }
-  if (grids.empty()) file.fail("axes", "no design points: give [axes], [linked] or [[grid]] tables");
+  const std::vector<Grid> grids = read_grids(file, root);
 
   for (const auto& g : grids) {
     for (const auto& [key, value] : g.set) add_unique(plan.swept_keys, std::string(key.str()));
@@ -392,43 +447,9 @@ SweepPlan load_sweep(const fs::path& sweep_file) {
   const std::string header = fmt::format("# Design point of the sweep {} (base case {}).\n", sweep_file.string(),
                                          plan.base_case.string());
 
+  const PointBase start{base_flat, fixed, sweep_dir, header};
   std::map<std::string, std::size_t> by_name;
-  for (const auto& g : grids) {
-    std::size_t count = 1;
-    for (const auto& axis : g.axes) count *= axis.size();
-    for (std::size_t flat_index = 0; flat_index < count; ++flat_index) {
-      FlatTable point = base_flat;
-      overlay(point, fixed);
-      FlatTable assigned = g.set;
-      std::size_t rest = flat_index;
-      for (auto axis = g.axes.rbegin(); axis != g.axes.rend(); ++axis) {  // last axis varies fastest
-        const std::size_t i = rest % axis->size();
-        rest /= axis->size();
-        for (std::size_t k = 0; k < axis->keys.size(); ++k) assigned.insert_or_assign(axis->keys[k], axis->values[k][i]);
-      }
-      absolute_mesh_file(assigned, sweep_dir);
-      overlay(point, assigned);
-
-      nlohmann::json values;
-      for (const std::string& key : plan.swept_keys) {
-        const toml::node* given = point.get(key);
-        values[key] = given ? json_value(*given) : json_default(*find_key(key));
-      }
-      std::string name = point_name(plan.name_labels, plan.swept_keys, values);
-      DesignPoint p = design_point(point, std::move(name), std::move(values), header, sweep_file.string());
-      p.grids = {g.name};
-
-      const auto [it, inserted] = by_name.emplace(p.name, plan.points.size());
-      if (inserted) {
-        plan.points.push_back(std::move(p));
-        continue;
-      }
-      DesignPoint& same = plan.points[it->second];
-      if (same.resolved != p.resolved || (same.resolved.is_null() && same.case_text != p.case_text))
-        file.fail(plan.swept_keys.front(), fmt::format("two different design points share the directory name '{}'", p.name));
-      add_unique(same.grids, g.name);
-    }
-  }
+  for (const auto& g : grids) add_grid_points(file, g, start, by_name, plan);
   return plan;
 }
 
