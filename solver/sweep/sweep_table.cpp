@@ -97,12 +97,65 @@ std::string joined_rules(const DesignPoint& point, bool messages) {
 }
 
 // A deque: columns are filled through references that must survive later additions.
+Column& add_column(std::deque<Column>& columns, std::string name, Kind kind) {
+  return columns.emplace_back(Column{std::move(name), kind, {}, {}, {}});
+}
+
+// Mesh-objective metrics of each limit (run/safety_report.hpp) and their verdicts, then the run's.
+void add_safety_columns(std::deque<Column>& columns, const std::vector<PointRecord>& records) {
+  for (const auto& limit : kPaperLimits) {
+    for (const auto& [column, key] : {std::pair{"critical_distance_{}", "critical_distance"},
+                                      std::pair{"volume_above_{}_mm3", "volume_above_limit_mm3"},
+                                      std::pair{"percentile_{}", "percentile"}}) {
+      Column& c = add_column(columns, fmt::format(fmt::runtime(column), limit.name), Kind::number);
+      const nlohmann::json::json_pointer pointer(fmt::format("/safety/{}/{}/value", limit.name, key));
+      for (const auto& r : records) c.number.push_back(number_at(r.summary, pointer));
+    }
+  }
+  const auto add_verdict = [&](const std::string& column, const std::string& pointer_text) {
+    Column& c = add_column(columns, column, Kind::flag);
+    const nlohmann::json::json_pointer pointer(pointer_text);
+    for (const auto& r : records) {
+      const bool has = r.status == "completed" && r.summary.contains(pointer) && r.summary.at(pointer).is_string();
+      c.flag.push_back(!has ? kUnknown : static_cast<std::int8_t>(r.summary.at(pointer).get<std::string>() == "pass"));
+    }
+  };
+  for (const auto& limit : kPaperLimits)
+    add_verdict(fmt::format("verdict_{}", limit.name), fmt::format("/safety/{}/verdict", limit.name));
+  add_verdict("verdict", "/verdict");  // the run's: fail when any limit fails
+}
+
+// Threshold columns: the union of the names the completed runs report, in first-seen order, and
+// "safe" (every threshold passed).
+void add_threshold_columns(std::deque<Column>& columns, const std::vector<PointRecord>& records) {
+  std::vector<std::vector<std::pair<std::string, std::int8_t>>> results;
+  std::vector<std::string> names;
+  for (const auto& r : records) {
+    results.push_back(r.status == "completed" ? threshold_results(r.summary) : decltype(results)::value_type{});
+    for (const auto& [name, pass] : results.back())
+      if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+  }
+  for (const auto& name : names) {
+    Column& c = add_column(columns, "pass_" + name, Kind::flag);
+    for (const auto& row : results) {
+      auto it = std::find_if(row.begin(), row.end(), [&](const auto& entry) { return entry.first == name; });
+      c.flag.push_back(it == row.end() ? kUnknown : it->second);
+    }
+  }
+  Column& safe = add_column(columns, "safe", Kind::flag);
+  for (const auto& row : results) {
+    std::int8_t all = row.empty() ? kUnknown : 1;
+    for (const auto& [name, pass] : row) all = pass == 0 ? 0 : (pass == kUnknown && all == 1 ? kUnknown : all);
+    safe.flag.push_back(all);
+  }
+}
+
 std::deque<Column> table_columns(const SweepPlan& plan, const fs::path& out_dir) {
   std::vector<PointRecord> records;
   for (const auto& p : plan.points) records.push_back(read_point(p, out_dir));
 
   std::deque<Column> columns;
-  auto add = [&](std::string name, Kind kind) -> Column& { return columns.emplace_back(Column{std::move(name), kind, {}, {}, {}}); };
+  auto add = [&](std::string name, Kind kind) -> Column& { return add_column(columns, std::move(name), kind); };
   Column& point = add("point", Kind::text);
   Column& grids = add("grids", Kind::text);
   for (const auto& p : plan.points) {
@@ -128,52 +181,10 @@ std::deque<Column> table_columns(const SweepPlan& plan, const fs::path& out_dir)
     Column& c = add(fmt::format("needle_{}", name), Kind::number);
     for (const auto& r : records) c.number.push_back(number_at(r.summary, nlohmann::json::json_pointer(fmt::format("/needle/{}", name))));
   }
-
-  // Mesh-objective metrics of each limit (run/safety_report.hpp) and their verdicts.
-  for (const auto& limit : kPaperLimits) {
-    for (const auto& [column, key] : {std::pair{"critical_distance_{}", "critical_distance"},
-                                      std::pair{"volume_above_{}_mm3", "volume_above_limit_mm3"},
-                                      std::pair{"percentile_{}", "percentile"}}) {
-      Column& c = add(fmt::format(fmt::runtime(column), limit.name), Kind::number);
-      const nlohmann::json::json_pointer pointer(fmt::format("/safety/{}/{}/value", limit.name, key));
-      for (const auto& r : records) c.number.push_back(number_at(r.summary, pointer));
-    }
-  }
-  const auto add_verdict = [&](const std::string& column, const std::string& pointer_text) {
-    Column& c = add(column, Kind::flag);
-    const nlohmann::json::json_pointer pointer(pointer_text);
-    for (const auto& r : records) {
-      const bool has = r.status == "completed" && r.summary.contains(pointer) && r.summary.at(pointer).is_string();
-      c.flag.push_back(!has ? kUnknown : static_cast<std::int8_t>(r.summary.at(pointer).get<std::string>() == "pass"));
-    }
-  };
-  for (const auto& limit : kPaperLimits)
-    add_verdict(fmt::format("verdict_{}", limit.name), fmt::format("/safety/{}/verdict", limit.name));
-  add_verdict("verdict", "/verdict");  // the run's: fail when any limit fails
+  add_safety_columns(columns, records);
   Column& coarse_mesh = add("coarse_mesh", Kind::text);  // empty: the converged setting (or not judged)
   for (const auto& p : plan.points) coarse_mesh.text.push_back(fmt::format("{}", fmt::join(p.coarse_mesh, "; ")));
-
-  // Threshold columns: the union of the names the completed runs report, in first-seen order.
-  std::vector<std::vector<std::pair<std::string, std::int8_t>>> results;
-  std::vector<std::string> names;
-  for (const auto& r : records) {
-    results.push_back(r.status == "completed" ? threshold_results(r.summary) : decltype(results)::value_type{});
-    for (const auto& [name, pass] : results.back())
-      if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
-  }
-  for (const auto& name : names) {
-    Column& c = add("pass_" + name, Kind::flag);
-    for (const auto& row : results) {
-      auto it = std::find_if(row.begin(), row.end(), [&](const auto& entry) { return entry.first == name; });
-      c.flag.push_back(it == row.end() ? kUnknown : it->second);
-    }
-  }
-  Column& safe = add("safe", Kind::flag);
-  for (const auto& row : results) {
-    std::int8_t all = row.empty() ? kUnknown : 1;
-    for (const auto& [name, pass] : row) all = pass == 0 ? 0 : (pass == kUnknown && all == 1 ? kUnknown : all);
-    safe.flag.push_back(all);
-  }
+  add_threshold_columns(columns, records);
 
   Column& dofs = add("dofs", Kind::number);
   Column& wall = add("wall_s", Kind::number);
