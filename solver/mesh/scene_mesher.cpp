@@ -461,35 +461,13 @@ std::string generate_and_write(const Case& c, const std::filesystem::path& msh_f
   return optimisation;
 }
 
-SceneMeshInfo mesh_brain_tip(const Case& c, const std::filesystem::path& msh_file) {
-  const NeedleTip tip = needle_tip_from_case(c);
-  const double edge = c.real("tissue.cube_edge_mm"), core = c.real("tissue.core_width_mm");
-  SceneMeshInfo info;
-  info.grading.refinement_level = static_cast<int>(c.integer("mesh.refinement_level"));
-  info.needle_description = tip.describe();
-  info.needle_analytic_volume_m3 = tip.analytic_volume();
-  info.domain_volume_m3 = std::pow(edge / kMmPerM, 3);
-
-  const int needle = add_needle_tip(c, tip);
-  double cad_volume_mm3 = 0;
-  occ::getMass(3, needle, cad_volume_mm3);
-  info.needle_cad_volume_m3 = cad_volume_mm3 / std::pow(kMmPerM, 3);
-  // A CAD tip has no independent volume: its own is the reference.
-  if (tip.kind == NeedleTip::Kind::Cad) info.needle_analytic_volume_m3 = info.needle_cad_volume_m3;
-  if (!c.path("needle.export_file").empty()) gmsh::write(c.path("needle.export_file").string());
-
-  const int cube = occ::addBox(-edge / 2, -edge / 2, 0, edge, edge, edge);
-  const int core_box = occ::addBox(-core / 2, -core / 2, 0, core, core, edge);
-  DimTags pieces;
-  std::vector<DimTags> piece_map;  // per input: cube, core, needle
-  occ::fragment({{3, cube}}, {{3, core_box}, {3, needle}}, pieces, piece_map);
-  const std::set<int> needle_volumes = tags_of(piece_map[2]);
-  const std::set<int> core_volumes = minus(tags_of(piece_map[1]), needle_volumes);
-  const std::set<int> outer_volumes = minus(tags_of(piece_map[0]), tags_of(piece_map[1]));
-  occ::synchronize();
-
-  std::set<int> tissue_volumes = core_volumes;
-  tissue_volumes.insert(outer_volumes.begin(), outer_volumes.end());
+// The brain-tip scene's physical groups: surfaces cavity, entry, the cube's faces and "fixed",
+// needle_rear (and needle_surface with the needle meshed); volumes tissue_core, tissue_outer (and
+// needle). Returns the surface groups.
+std::map<std::string, std::vector<int>> add_scene_groups(const Case& c, double edge, const std::set<int>& core_volumes,
+                                                         const std::set<int>& outer_volumes,
+                                                         const std::set<int>& needle_volumes,
+                                                         const std::set<int>& tissue_volumes) {
   const std::vector<int> needle_surfaces = surfaces_of(needle_volumes);
   std::map<std::string, std::vector<int>> groups;
   const std::array<double, 3> lo{-edge / 2, -edge / 2, 0}, hi{edge / 2, edge / 2, edge};
@@ -513,7 +491,14 @@ SceneMeshInfo mesh_brain_tip(const Case& c, const std::filesystem::path& msh_fil
   add_physical(3, {outer_volumes.begin(), outer_volumes.end()}, "tissue_outer");
   if (c.flag("needle.mesh_volume")) add_physical(3, {needle_volumes.begin(), needle_volumes.end()}, "needle");
 
-  // Element size: core_element inside the core box (its faces included), outer_element outside.
+  return groups;
+}
+
+// The element size field: core_element inside the core box (its faces included), outer_element
+// outside, the compliant tip's neck annulus, and the grading towards the needle's edges and
+// surface (add_needle_grading). Returns the field; `edges` gets the cavity's sharp curves.
+int add_size_field(const Case& c, const NeedleTip& tip, double edge, double core, const std::vector<int>& cavity,
+                   NeedleGrading& grading, std::vector<int>& edges) {
   const int box_field = gmsh::model::mesh::field::add("Box");
   gmsh::model::mesh::field::setNumber(box_field, "VIn", c.real("tissue.core_element_mm"));
   gmsh::model::mesh::field::setNumber(box_field, "VOut", c.real("tissue.outer_element_mm"));
@@ -543,20 +528,54 @@ SceneMeshInfo mesh_brain_tip(const Case& c, const std::filesystem::path& msh_fil
     size_field = gmsh::model::mesh::field::add("Min");
     gmsh::model::mesh::field::setNumbers(size_field, "FieldsList", {double(box_field), double(neck_field)});
   }
-  std::vector<int> edges;  // the cavity's sharp edges
   if (tip.kind != NeedleTip::Kind::Compliant) {
     const double edge_um = c.real("needle.edge_radius_um");
     const bool bevel = tip.kind == NeedleTip::Kind::Bevel, rounded = bevel && tip.bevel.rounded();
     const std::vector<int> sharp = rounded ? std::vector<int>{}
-                                   : bevel ? sharp_cavity_curves(groups["cavity"])
-                                           : sharp_cad_curves(groups["cavity"]);
+                                   : bevel ? sharp_cavity_curves(cavity)
+                                           : sharp_cad_curves(cavity);
     const double rho_mm = bevel ? std::min(tip.bevel.fillet * kMmPerM, edge_um / kMmPerM) : edge_um / kMmPerM;
-    std::vector<int> size_fields = add_needle_grading(c, sharp, rho_mm, groups["cavity"], info.grading, edges);
+    std::vector<int> size_fields = add_needle_grading(c, sharp, rho_mm, cavity, grading, edges);
     size_fields.push_back(size_field);
     size_field = gmsh::model::mesh::field::add("Min");
     gmsh::model::mesh::field::setNumbers(size_field, "FieldsList",
                                          std::vector<double>(size_fields.begin(), size_fields.end()));
   }
+  return size_field;
+}
+
+SceneMeshInfo mesh_brain_tip(const Case& c, const std::filesystem::path& msh_file) {
+  const NeedleTip tip = needle_tip_from_case(c);
+  const double edge = c.real("tissue.cube_edge_mm"), core = c.real("tissue.core_width_mm");
+  SceneMeshInfo info;
+  info.grading.refinement_level = static_cast<int>(c.integer("mesh.refinement_level"));
+  info.needle_description = tip.describe();
+  info.needle_analytic_volume_m3 = tip.analytic_volume();
+  info.domain_volume_m3 = std::pow(edge / kMmPerM, 3);
+
+  const int needle = add_needle_tip(c, tip);
+  double cad_volume_mm3 = 0;
+  occ::getMass(3, needle, cad_volume_mm3);
+  info.needle_cad_volume_m3 = cad_volume_mm3 / std::pow(kMmPerM, 3);
+  // A CAD tip has no independent volume: its own is the reference.
+  if (tip.kind == NeedleTip::Kind::Cad) info.needle_analytic_volume_m3 = info.needle_cad_volume_m3;
+  if (!c.path("needle.export_file").empty()) gmsh::write(c.path("needle.export_file").string());
+
+  const int cube = occ::addBox(-edge / 2, -edge / 2, 0, edge, edge, edge);
+  const int core_box = occ::addBox(-core / 2, -core / 2, 0, core, core, edge);
+  DimTags pieces;
+  std::vector<DimTags> piece_map;  // per input: cube, core, needle
+  occ::fragment({{3, cube}}, {{3, core_box}, {3, needle}}, pieces, piece_map);
+  const std::set<int> needle_volumes = tags_of(piece_map[2]);
+  const std::set<int> core_volumes = minus(tags_of(piece_map[1]), needle_volumes);
+  const std::set<int> outer_volumes = minus(tags_of(piece_map[0]), tags_of(piece_map[1]));
+  occ::synchronize();
+
+  std::set<int> tissue_volumes = core_volumes;
+  tissue_volumes.insert(outer_volumes.begin(), outer_volumes.end());
+  auto groups = add_scene_groups(c, edge, core_volumes, outer_volumes, needle_volumes, tissue_volumes);
+  std::vector<int> edges;  // the cavity's sharp edges
+  const int size_field = add_size_field(c, tip, edge, core, groups["cavity"], info.grading, edges);
   gmsh::model::mesh::field::setAsBackgroundMesh(size_field);
   gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
   gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
