@@ -3,7 +3,7 @@
 //  are fragmented together so that every interface is conforming; the tip sits with its rear
 //  face on z = 0 and points into +z. Element size: a Box field, core_element inside the core,
 //  outer_element outside (paper 001: 0.4 / 2 mm), optionally refined by curvature, and graded
-//  down towards the needle (add_needle_grading below).
+//  down towards the needle (mesh/size_field.hpp).
 //  block: box [0, Lx] x [0, Ly] x [0, Lz] with uniform element size.
 // mesh.refinement_level L halves every size near the needle (and the block's size) per level.
 #include "mesh/scene_mesher.hpp"
@@ -24,6 +24,7 @@
 #include "geometry/needle_tip.hpp"
 #include "mesh/cad_tip.hpp"
 #include "mesh/gmsh_session.hpp"
+#include "mesh/size_field.hpp"
 
 namespace needlefem {
 
@@ -127,6 +128,11 @@ std::set<int> minus(const std::set<int>& a, const std::set<int>& b) {
   return out;
 }
 
+std::set<int> united(std::set<int> a, const std::set<int>& b) {
+  a.insert(b.begin(), b.end());
+  return a;
+}
+
 void add_physical(int dim, const std::vector<int>& tags, const std::string& name) {
   if (tags.empty()) return;
   gmsh::model::setPhysicalName(dim, gmsh::model::addPhysicalGroup(dim, tags), name);
@@ -165,184 +171,6 @@ void set_mesh_options(const Case& c) {
   gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
   gmsh::option::setNumber("Mesh.Binary", 1);
   gmsh::option::setNumber("Mesh.SaveAll", 0);
-}
-
-// Grading towards the needle. Where the tissue presses on the needle's edges the fields vary
-// over the edge radius ρ (needle.edge_radius_um; the contact obstacle rounds the edges with it),
-// and the point maxima sit there: with the core size alone they changed with every mesh seed.
-// The element size is the minimum of the core/outer Box field and two Threshold fields on the
-// distance d to the cavity:
-//   edges (the sharp curves of the cavity: bevel-cylinder, fillet-cylinder):
-//     h = h_e + (h_core - h_e) d / D,   h_e = max(kEdgeSizePerRadius ρ, kEdgeSizePerCore h_core) / 2^L
-//   surface (all faces of the cavity):
-//     h = h_s + (h_core - h_s) d / D,   h_s = kSurfaceSizePerCore h_core / 2^L
-// both capped at h_core beyond D = h_core / kGrowth. h_e = ρ at level 0 on the paper's 0.4 mm
-// core (quadratic elements span the rounding's arc in about one element); a coarser core keeps
-// its edges at a quarter of its size at level 0, so a coarse mesh stays cheap and refinement
-// levels still halve every size. D is a physical length, the same at every
-// level, so the graded zone keeps its extent while every size near the needle halves per level;
-// the size grows by at most a factor 1 + kGrowth from one element layer to the next.
-constexpr double kEdgeSizePerRadius = 1.0;
-constexpr double kEdgeSizePerCore = 0.25;
-constexpr double kSurfaceSizePerCore = 0.5;
-constexpr double kGrowth = 0.4;
-double level_factor(const Case& c) { return std::ldexp(1.0, -static_cast<int>(c.integer("mesh.refinement_level"))); }
-
-// The cavity surfaces each curve of the cavity bounds.
-std::map<int, std::set<int>> cavity_surfaces_of_curves(const std::vector<int>& cavity) {
-  std::map<int, std::set<int>> surfaces_of_curve;
-  for (int s : cavity) {
-    DimTags curves;
-    gmsh::model::getBoundary({{2, s}}, curves, /*combined=*/false, /*oriented=*/false);
-    for (const auto& [dim, tag] : curves) surfaces_of_curve[std::abs(tag)].insert(s);
-  }
-  return surfaces_of_curve;
-}
-
-// The curves where two cavity surfaces meet at an angle: the bevel-cylinder and fillet-cylinder
-// edges. Not the rim on the entry face (one cavity surface), nor the cylinder's seam (one
-// surface), nor the bevel-fillet junction, where the profile's arc is tangent to the bevel line:
-// the side profile is extruded along y, so its junctions are the straight curves along y.
-std::vector<int> sharp_cavity_curves(const std::vector<int>& cavity) {
-  const std::map<int, std::set<int>> surfaces_of_curve = cavity_surfaces_of_curves(cavity);
-  std::vector<int> sharp;
-  for (const auto& [curve, surfaces] : surfaces_of_curve) {
-    if (surfaces.size() < 2) continue;
-    double b[6];
-    gmsh::model::getBoundingBox(1, curve, b[0], b[1], b[2], b[3], b[4], b[5]);
-    const double tol = 1e-6 * std::max({b[3] - b[0], b[4] - b[1], b[5] - b[2]});
-    const bool along_y = b[3] - b[0] <= tol && b[5] - b[2] <= tol;
-    if (!along_y) sharp.push_back(curve);
-  }
-  return sharp;
-}
-
-// A CAD tip's sharp edges: the curves shared by two cavity surfaces whose normals differ at the
-// curve's midpoint by more than kSharpDeg (tangent junctions, such as a fillet running into a
-// face, are not edges). On the exported bevel tip this picks the curves sharp_cavity_curves does.
-constexpr double kSharpDeg = 5.0;
-std::vector<int> sharp_cad_curves(const std::vector<int>& cavity) {
-  const std::map<int, std::set<int>> surfaces_of_curve = cavity_surfaces_of_curves(cavity);
-  std::vector<int> sharp;
-  for (const auto& [curve, surfaces] : surfaces_of_curve) {
-    if (surfaces.size() != 2) continue;
-    std::vector<double> lo, hi, mid, normal[2];
-    gmsh::model::getParametrizationBounds(1, curve, lo, hi);
-    gmsh::model::getValue(1, curve, {0.5 * (lo[0] + hi[0])}, mid);
-    int k = 0;
-    for (int s : surfaces) {
-      // (getClosestPoint's parametric coordinates put a fillet's normal at its crest)
-      std::vector<double> uv;
-      gmsh::model::getParametrization(2, s, mid, uv);
-      gmsh::model::getNormal(s, uv, normal[k++]);
-    }
-    const double cosine = normal[0][0] * normal[1][0] + normal[0][1] * normal[1][1] + normal[0][2] * normal[1][2];
-    if (std::abs(cosine) < std::cos(kSharpDeg * kPi / 180)) sharp.push_back(curve);
-  }
-  return sharp;
-}
-
-// Distance -> size Threshold field (linear from size_min at d = 0 to size_max at d = reach).
-int threshold_field(int distance_field, double size_min, double size_max, double reach) {
-  namespace field = gmsh::model::mesh::field;
-  const int f = field::add("Threshold");
-  field::setNumber(f, "InField", distance_field);
-  field::setNumber(f, "SizeMin", size_min);
-  field::setNumber(f, "SizeMax", size_max);
-  field::setNumber(f, "DistMin", 0.0);
-  field::setNumber(f, "DistMax", reach);
-  field::setNumber(f, "StopAtDistMax", 1);  // beyond: no constraint (the Box field's sizes)
-  return f;
-}
-
-// Adds the edge and surface fields (see above) and returns them; fills the targets in `grading`
-// and the sharp edges' curve tags in `edges`.
-// `sharp_edges`: the cavity's sharp curves, `edge_radius_mm`: their rounding ρ (0: none).
-std::vector<int> add_needle_grading(const Case& c, const std::vector<int>& sharp_edges, double edge_radius_mm,
-                                    const std::vector<int>& cavity, NeedleGrading& grading, std::vector<int>& edges) {
-  namespace field = gmsh::model::mesh::field;
-  const double factor = level_factor(c), h_core = c.real("tissue.core_element_mm");
-  grading.core_mm = h_core;
-  grading.grading_distance_mm = h_core / kGrowth;
-  grading.surface_target_mm = kSurfaceSizePerCore * h_core * factor;
-  std::vector<int> fields;
-  // The surface: sampled finely enough that the sampled distance errs by a fraction of h_s.
-  double extent = 0;
-  for (int s : cavity) {
-    double b[6];
-    gmsh::model::getBoundingBox(2, s, b[0], b[1], b[2], b[3], b[4], b[5]);
-    extent = std::max({extent, b[3] - b[0], b[4] - b[1], b[5] - b[2]});
-  }
-  const int surface_distance = field::add("Distance");
-  field::setNumbers(surface_distance, "SurfacesList", std::vector<double>(cavity.begin(), cavity.end()));
-  field::setNumber(surface_distance, "NNodesByEdge", std::ceil(2.0 * extent / grading.surface_target_mm) + 1);
-  fields.push_back(threshold_field(surface_distance, grading.surface_target_mm, h_core, grading.grading_distance_mm));
-
-  edges = sharp_edges;
-  grading.edge_radius_mm = edge_radius_mm;
-  if (!(grading.edge_radius_mm > 0)) edges.clear();  // a sharp tip (τ = 0): its edges stay sharp
-  grading.edge_curves = static_cast<int>(edges.size());
-  if (edges.empty()) return fields;
-  grading.edge_target_mm = std::min(
-      grading.surface_target_mm,
-      std::max(kEdgeSizePerRadius * grading.edge_radius_mm, kEdgeSizePerCore * h_core) * factor);
-  double length = 0;
-  for (int e : edges) {
-    double mass = 0;
-    occ::getMass(1, e, mass);
-    length = std::max(length, mass);
-  }
-  const int edge_distance = field::add("Distance");
-  field::setNumbers(edge_distance, "CurvesList", std::vector<double>(edges.begin(), edges.end()));
-  field::setNumber(edge_distance, "NNodesByEdge", std::ceil(4.0 * length / grading.edge_target_mm) + 1);
-  fields.push_back(threshold_field(edge_distance, grading.edge_target_mm, h_core, grading.grading_distance_mm));
-  return fields;
-}
-
-// Size statistics of the tissue tets with a corner node on the given entities (after meshing).
-ElementSizeStats element_sizes_touching(const std::set<int>& tissue_volumes, const DimTags& entities) {
-  std::set<std::size_t> touching_nodes;
-  for (const auto& [dim, tag] : entities) {
-    std::vector<std::size_t> tags;
-    std::vector<double> coords, parametric;
-    gmsh::model::mesh::getNodes(tags, coords, parametric, dim, tag, /*includeBoundary=*/true, false);
-    touching_nodes.insert(tags.begin(), tags.end());
-  }
-  std::vector<std::size_t> all_tags;
-  std::vector<double> all_coords, parametric;
-  gmsh::model::mesh::getNodes(all_tags, all_coords, parametric, -1, -1, false, false);
-  std::map<std::size_t, std::size_t> index;
-  for (std::size_t i = 0; i < all_tags.size(); ++i) index[all_tags[i]] = i;
-  std::vector<double> sizes;
-  for (int v : tissue_volumes) {
-    std::vector<int> types;
-    std::vector<std::vector<std::size_t>> element_tags, node_tags;
-    gmsh::model::mesh::getElements(types, element_tags, node_tags, 3, v);
-    for (std::size_t t = 0; t < types.size(); ++t) {
-      const std::size_t per = node_tags[t].size() / element_tags[t].size();
-      for (std::size_t e = 0; e < element_tags[t].size(); ++e) {
-        const std::size_t* corner = &node_tags[t][e * per];
-        if (std::none_of(corner, corner + 4, [&](std::size_t n) { return touching_nodes.count(n) > 0; })) continue;
-        double sum = 0;
-        for (int i = 0; i < 4; ++i)
-          for (int j = i + 1; j < 4; ++j) {
-            const double* a = &all_coords[3 * index.at(corner[i])];
-            const double* b = &all_coords[3 * index.at(corner[j])];
-            sum += std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
-          }
-        sizes.push_back(sum / 6.0);
-      }
-    }
-  }
-  ElementSizeStats stats;
-  if (sizes.empty()) return stats;
-  std::sort(sizes.begin(), sizes.end());
-  stats.tets = sizes.size();
-  stats.min = sizes.front();
-  stats.max = sizes.back();
-  const std::size_t n = sizes.size();
-  stats.median = n % 2 ? sizes[n / 2] : 0.5 * (sizes[n / 2 - 1] + sizes[n / 2]);
-  return stats;
 }
 
 }  // namespace
@@ -466,12 +294,11 @@ std::string generate_and_write(const Case& c, const std::filesystem::path& msh_f
 // needle). Returns the surface groups.
 std::map<std::string, std::vector<int>> add_scene_groups(const Case& c, double edge, const std::set<int>& core_volumes,
                                                          const std::set<int>& outer_volumes,
-                                                         const std::set<int>& needle_volumes,
-                                                         const std::set<int>& tissue_volumes) {
+                                                         const std::set<int>& needle_volumes) {
   const std::vector<int> needle_surfaces = surfaces_of(needle_volumes);
   std::map<std::string, std::vector<int>> groups;
   const std::array<double, 3> lo{-edge / 2, -edge / 2, 0}, hi{edge / 2, edge / 2, edge};
-  for (int s : surfaces_of(tissue_volumes)) {
+  for (int s : surfaces_of(united(core_volumes, outer_volumes))) {
     const bool on_needle = std::count(needle_surfaces.begin(), needle_surfaces.end(), s) > 0;
     const std::string face = box_face_of(s, lo, hi);
     if (on_needle) groups["cavity"].push_back(s);
@@ -492,56 +319,6 @@ std::map<std::string, std::vector<int>> add_scene_groups(const Case& c, double e
   if (c.flag("needle.mesh_volume")) add_physical(3, {needle_volumes.begin(), needle_volumes.end()}, "needle");
 
   return groups;
-}
-
-// The element size field: core_element inside the core box (its faces included), outer_element
-// outside, the compliant tip's neck annulus, and the grading towards the needle's edges and
-// surface (add_needle_grading). Returns the field; `edges` gets the cavity's sharp curves.
-int add_size_field(const Case& c, const NeedleTip& tip, double edge, double core, const std::vector<int>& cavity,
-                   NeedleGrading& grading, std::vector<int>& edges) {
-  const int box_field = gmsh::model::mesh::field::add("Box");
-  gmsh::model::mesh::field::setNumber(box_field, "VIn", c.real("tissue.core_element_mm"));
-  gmsh::model::mesh::field::setNumber(box_field, "VOut", c.real("tissue.outer_element_mm"));
-  const double pad = 1e-6 * edge;
-  gmsh::model::mesh::field::setNumber(box_field, "XMin", -core / 2 - pad);
-  gmsh::model::mesh::field::setNumber(box_field, "XMax", core / 2 + pad);
-  gmsh::model::mesh::field::setNumber(box_field, "YMin", -core / 2 - pad);
-  gmsh::model::mesh::field::setNumber(box_field, "YMax", core / 2 + pad);
-  gmsh::model::mesh::field::setNumber(box_field, "ZMin", -pad);
-  gmsh::model::mesh::field::setNumber(box_field, "ZMax", edge + pad);
-  int size_field = box_field;
-  if (tip.kind == NeedleTip::Kind::Compliant) {
-    // The neck is thinner than a core element: resolve the annulus of tissue around it with
-    // elements of the neck diameter (reported in the mesh report's case echo via these keys).
-    const auto& n = tip.compliant;
-    const int neck_field = gmsh::model::mesh::field::add("Box");
-    const double neck_size = std::min(c.real("tissue.core_element_mm"), n.neck_diameter * kMmPerM);
-    gmsh::model::mesh::field::setNumber(neck_field, "VIn", neck_size);
-    gmsh::model::mesh::field::setNumber(neck_field, "VOut", c.real("tissue.outer_element_mm"));
-    const double reach = n.radius * kMmPerM;
-    gmsh::model::mesh::field::setNumber(neck_field, "XMin", -reach);
-    gmsh::model::mesh::field::setNumber(neck_field, "XMax", reach);
-    gmsh::model::mesh::field::setNumber(neck_field, "YMin", -reach);
-    gmsh::model::mesh::field::setNumber(neck_field, "YMax", reach);
-    gmsh::model::mesh::field::setNumber(neck_field, "ZMin", n.shaft * kMmPerM);
-    gmsh::model::mesh::field::setNumber(neck_field, "ZMax", (n.shaft + n.neck_length) * kMmPerM);
-    size_field = gmsh::model::mesh::field::add("Min");
-    gmsh::model::mesh::field::setNumbers(size_field, "FieldsList", {double(box_field), double(neck_field)});
-  }
-  if (tip.kind != NeedleTip::Kind::Compliant) {
-    const double edge_um = c.real("needle.edge_radius_um");
-    const bool bevel = tip.kind == NeedleTip::Kind::Bevel, rounded = bevel && tip.bevel.rounded();
-    const std::vector<int> sharp = rounded ? std::vector<int>{}
-                                   : bevel ? sharp_cavity_curves(cavity)
-                                           : sharp_cad_curves(cavity);
-    const double rho_mm = bevel ? std::min(tip.bevel.fillet * kMmPerM, edge_um / kMmPerM) : edge_um / kMmPerM;
-    std::vector<int> size_fields = add_needle_grading(c, sharp, rho_mm, cavity, grading, edges);
-    size_fields.push_back(size_field);
-    size_field = gmsh::model::mesh::field::add("Min");
-    gmsh::model::mesh::field::setNumbers(size_field, "FieldsList",
-                                         std::vector<double>(size_fields.begin(), size_fields.end()));
-  }
-  return size_field;
 }
 
 SceneMeshInfo mesh_brain_tip(const Case& c, const std::filesystem::path& msh_file) {
@@ -571,9 +348,7 @@ SceneMeshInfo mesh_brain_tip(const Case& c, const std::filesystem::path& msh_fil
   const std::set<int> outer_volumes = minus(tags_of(piece_map[0]), tags_of(piece_map[1]));
   occ::synchronize();
 
-  std::set<int> tissue_volumes = core_volumes;
-  tissue_volumes.insert(outer_volumes.begin(), outer_volumes.end());
-  auto groups = add_scene_groups(c, edge, core_volumes, outer_volumes, needle_volumes, tissue_volumes);
+  auto groups = add_scene_groups(c, edge, core_volumes, outer_volumes, needle_volumes);
   std::vector<int> edges;  // the cavity's sharp edges
   const int size_field = add_size_field(c, tip, edge, core, groups["cavity"], info.grading, edges);
   gmsh::model::mesh::field::setAsBackgroundMesh(size_field);
@@ -585,6 +360,7 @@ SceneMeshInfo mesh_brain_tip(const Case& c, const std::filesystem::path& msh_fil
     DimTags edge_entities, cavity_entities;
     for (int e : edges) edge_entities.push_back({1, e});
     for (int s : groups["cavity"]) cavity_entities.push_back({2, s});
+    const std::set<int> tissue_volumes = united(core_volumes, outer_volumes);
     info.grading.edge_elements = element_sizes_touching(tissue_volumes, edge_entities);
     info.grading.cavity_elements = element_sizes_touching(tissue_volumes, cavity_entities);
   });
@@ -598,7 +374,7 @@ SceneMeshInfo mesh_block(const Case& c, const std::filesystem::path& msh_file) {
   const std::array<double, 3> lo{0, 0, 0}, hi{size[0], size[1], size[2]};
   for (int s : surfaces_of({box})) add_physical(2, {s}, box_face_of(s, lo, hi));
   add_physical(3, {box}, "tissue");
-  const double h = c.real("block.element_mm") * level_factor(c);
+  const double h = c.real("block.element_mm") * refinement_size_factor(c);
   gmsh::option::setNumber("Mesh.MeshSizeMin", h);
   gmsh::option::setNumber("Mesh.MeshSizeMax", h);
   set_mesh_options(c);
@@ -618,7 +394,7 @@ SceneMeshInfo mesh_user_geometry(const Case& c, const std::filesystem::path& msh
   } catch (const std::string& message) {
     throw c.error("scene.mesh_file", fmt::format("gmsh cannot read '{}': {}", geo.string(), message));
   }
-  gmsh::option::setNumber("Mesh.MeshSizeFactor", level_factor(c));
+  gmsh::option::setNumber("Mesh.MeshSizeFactor", refinement_size_factor(c));
   set_mesh_options(c);
   SceneMeshInfo info;
   info.grading.refinement_level = static_cast<int>(c.integer("mesh.refinement_level"));
