@@ -183,10 +183,13 @@ class CavityRounder {
         for (int k = 0; k < 6; ++k) {
           const int middle = tet[4 + k], a = tet[kEdgeEnds[k][0]], b = tet[kEdgeEnds[k][1]];
           if (!on_cavity_[middle]) continue;
-          for (int c = 0; c < 3; ++c) {
-            move_[middle][c] = 0.5 * (move_[a][c] + move_[b][c]);
-            if (straight) move_[middle][c] += 0.5 * (reference_[a][c] + reference_[b][c]) - reference_[middle][c];
-            mesh_.nodes[middle][c] = reference_[middle][c] + move_[middle][c];
+          if (straight) {
+            straighten_edge(middle, a, b);
+          } else {
+            for (int c = 0; c < 3; ++c) {
+              move_[middle][c] = 0.5 * (move_[a][c] + move_[b][c]);
+              mesh_.nodes[middle][c] = reference_[middle][c] + move_[middle][c];
+            }
           }
           ++(straight ? report.straightened_edges : report.relaxed_edges);
         }
@@ -226,13 +229,7 @@ class CavityRounder {
         if (mesh_.tet_region[e] == needle_ || quality.tet_scaled_jacobian[e] > 0.0) continue;
         if (!(straight_tet_quality(mesh_, e) > 0.0)) continue;  // inverted when straight too: nothing to gain
         const int* tet = mesh_.tet(e);
-        for (int k = 0; k < 6; ++k) {
-          const int middle = tet[4 + k], a = tet[kEdgeEnds[k][0]], b = tet[kEdgeEnds[k][1]];
-          for (int c = 0; c < 3; ++c) {
-            mesh_.nodes[middle][c] = 0.5 * (mesh_.nodes[a][c] + mesh_.nodes[b][c]);
-            move_[middle][c] = mesh_.nodes[middle][c] - reference_[middle][c];
-          }
-        }
+        for (int k = 0; k < 6; ++k) straighten_edge(tet[4 + k], tet[kEdgeEnds[k][0]], tet[kEdgeEnds[k][1]]);
         ++this_round;
       }
       if (this_round == 0) break;
@@ -267,6 +264,15 @@ class CavityRounder {
       }
     for (std::size_t node = 0; node < nodes_; ++node)
       for (int c = 0; c < 3; ++c) mesh_.nodes[node][c] = reference_[node][c] + move_[node][c];
+  }
+
+  // The mid-edge node `middle` of the edge (a, b) at the midpoint of its end vertices: a straight
+  // edge (steps 3 and 5).
+  void straighten_edge(int middle, int a, int b) {
+    for (int c = 0; c < 3; ++c) {
+      mesh_.nodes[middle][c] = 0.5 * (mesh_.nodes[a][c] + mesh_.nodes[b][c]);
+      move_[middle][c] = mesh_.nodes[middle][c] - reference_[middle][c];
+    }
   }
 
   double worst_around(int node) const {
