@@ -262,8 +262,9 @@ void print_progress(std::FILE* stream, double t, double end, const IdaCounters& 
 SceneModel load_run_scene(const Case& c, const std::filesystem::path& out_dir, std::FILE* progress,
                           std::shared_ptr<const contact::Needle>* needle) {
   SceneModel scene = load_scene_model(c, out_dir, progress);
-  auto built = contact::round_cavity_to_needle(c, scene.mesh, scene.cavity_rounding);
-  if (needle) *needle = std::move(built);
+  contact::RoundedCavity rounded = contact::round_cavity_to_needle(c, scene.mesh);
+  scene.cavity_rounding = rounded.rounding;
+  if (needle) *needle = std::move(rounded.needle);
   if (scene.cavity_rounding.moved_nodes == 0) return scene;
   const double tissue_before = scene.quality.volume_of_regions_starting_with("tissue");
   scene.quality = measure_quality(scene.mesh);

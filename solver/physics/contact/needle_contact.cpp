@@ -103,17 +103,17 @@ std::shared_ptr<const Needle> needle_from_case(const Case& input, std::shared_pt
   return std::make_shared<RigidNeedle>(tip.bevel, motion, edge_radius);
 }
 
-std::shared_ptr<const Needle> round_cavity_to_needle(const Case& input, TetMesh& mesh, CavityRounding& rounding) {
-  if (!needle_contact_enabled(input)) return nullptr;
+RoundedCavity round_cavity_to_needle(const Case& input, TetMesh& mesh) {
+  if (!needle_contact_enabled(input)) return {};
   const bool user_mesh = !input.path("scene.mesh_file").empty();
   std::shared_ptr<const Needle> sharp;  // without the edge rounding, as the cavity was meshed
-  std::shared_ptr<const Needle> needle = needle_from_case(input, user_mesh ? &sharp : nullptr);
+  RoundedCavity rounded{needle_from_case(input, user_mesh ? &sharp : nullptr), {}};
   if (user_mesh) require_cavity_on_needle(input, mesh, *sharp);
-  rounding = round_cavity(mesh, [&](const Point3& X) {
-    const ObstacleProjection p = needle->project(X, 0.0);
+  rounded.rounding = round_cavity(mesh, [&](const Point3& X) {
+    const ObstacleProjection p = rounded.needle->project(X, 0.0);
     return Point3{X[0] - p.gap * p.normal[0], X[1] - p.gap * p.normal[1], X[2] - p.gap * p.normal[2]};
   });
-  return needle;
+  return rounded;
 }
 
 NeedleContact::NeedleContact(const Case& input, const TetMesh& mesh, double reference_modulus,

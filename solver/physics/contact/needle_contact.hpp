@@ -59,9 +59,13 @@ bool needle_contact_enabled(const Case& input);
 // With needle contact, moves the mesh's cavity onto the rounded needle of the case at t = 0
 // (model/cavity_rounding.hpp), a user's mesh (scene.mesh_file) once its cavity has been checked
 // against the sharp needle (CaseError naming the largest offset); a tied or absent needle leaves
-// the mesh as it is. Sets `rounding` to what moved and returns the needle (null without needle
-// contact), to be the needle in contact too: a CAD tip's triangulation and core are then built once.
-std::shared_ptr<const Needle> round_cavity_to_needle(const Case& input, TetMesh& mesh, CavityRounding& rounding);
+// the mesh as it is. Returns what moved and the needle (null without needle contact), to be the
+// needle in contact too: a CAD tip's triangulation and core are then built once.
+struct RoundedCavity {
+  std::shared_ptr<const Needle> needle;
+  CavityRounding rounding;
+};
+RoundedCavity round_cavity_to_needle(const Case& input, TetMesh& mesh);
 
 struct NeedleLoad {
   Point3 force{};   // on the needle, N
