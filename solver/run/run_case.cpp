@@ -360,7 +360,10 @@ class RunPass {
                                    "output times before it are kept", inversion_s));
       try {
         if (t > integrator.time())
-          integrator.advance_to(t, [&](double t_step) { report_step(integrator, *system, t_step); });
+          integrator.advance_to(t, [&](double t_step) {
+            report_step(integrator, *system, t_step);
+            if (t_step < t) safety_->observe_step(t_step, integrator.state());
+          });
       } catch (const std::exception&) {
         record_solver_counts(integrator, *system);  // the failed run's summary shows the failed attempts
         throw;
@@ -446,7 +449,7 @@ class RunPass {
     if (record_.elastic_energy_j > 0.0)
       record_.max_kinetic_to_elastic = std::max(record_.max_kinetic_to_elastic, f.kinetic_energy / record_.elastic_energy_j);
     record_solver_counts(integrator, system);
-    safety_->add_time(t, f);
+    safety_->add_time(t, f, integrator.state());
     out.history.row(t, record_.counters, f, record_.reactions, record_.elastic_energy_j,
                     safety_->history_cells() + (needle_ ? needle_->history_cells() : "") +
                         (scene_loads_ ? scene_loads_->history_cells(t, integrator.state(), integrator.state_rate()) : ""));

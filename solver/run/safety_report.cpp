@@ -24,16 +24,25 @@ struct LimitText {
   const char* quantity;
   const char* unit;
   double scale;
+  bool windowed;  // judged over thresholds.strain_rate_window_s
 };
 constexpr LimitText kLimitText[] = {
     {"log_strain", fields::kLogStrain, "max principal log strain",
-     "max principal logarithmic strain, ln of the largest principal stretch", "", 1.0},
+     "max principal logarithmic strain, ln of the largest principal stretch", "", 1.0, false},
     {"strain_rate_per_s", fields::kStrainRate, "max principal strain rate",
-     "max principal strain rate (1/s): the largest eigenvalue of the rate of deformation D = sym(dF/dt F^-1), the "
-     "stretch rate of the uniaxial tests the limit comes from; max.equivalent_strain_rate_per_s, sqrt(2/3 D:D), "
-     "counts shear too (2/sqrt(3) times larger in simple shear) and is reported, not judged",
-     "1/s", 1.0},
-    {"stress_pa", fields::kVonMises, "von Mises stress", "von Mises (equivalent) Cauchy stress, Pa", "kPa", 1e-3}};
+     "max principal strain rate (1/s) sustained over window_s: ln of the largest principal stretch of the "
+     "deformation over the window before each output time (F(t) F(t - window_s)^-1), divided by window_s; for "
+     "a steady stretching it is the largest eigenvalue of the rate of deformation D = sym(dF/dt F^-1), the "
+     "stretch rate of the uniaxial tests the limit comes from, and a slip burst counts by the strain it "
+     "delivers. critical_distance_instantaneous is the same ball average of the instantaneous largest "
+     "eigenvalue of D at the output times; max.equivalent_strain_rate_per_s, sqrt(2/3 D:D), counts shear too "
+     "(2/sqrt(3) times larger in simple shear) and is reported, not judged",
+     "1/s", 1.0, true},
+    {"stress_pa", fields::kVonMises, "von Mises stress", "von Mises (equivalent) Cauchy stress, Pa", "kPa", 1e-3,
+     false}};
+// The windowed limit's other critical-distance values (window_variants_), in summary.json.
+constexpr const char* kWindowVariantNames[] = {"critical_distance_half_window", "critical_distance_double_window",
+                                               "critical_distance_instantaneous"};
 
 nlohmann::json millimetres(const Point3& x) { return {x[0] * kMmPerM, x[1] * kMmPerM, x[2] * kMmPerM}; }
 
@@ -89,10 +98,13 @@ SafetyReport::SafetyReport(const Case& c, const TetMesh& mesh, const fields::Tis
       region_mm_(c.real("thresholds.region_mm")),
       positions_(evaluator.point_positions()),
       volumes_(evaluator.point_volumes()),
+      evaluator_(evaluator),
+      window_s_(c.real("thresholds.strain_rate_window_s")),
+      window_(2.0 * window_s_, window_s_ / 4.0),
       now_(std::size(kLimitText)),
       over_time_(std::size(kLimitText)) {
   for (const LimitText& text : kLimitText)
-    limits_.push_back({text.name, text.field, c.real(std::string("thresholds.") + text.name)});
+    limits_.push_back({text.name, text.field, c.real(std::string("thresholds.") + text.name), text.windowed});
   const double radius = radius_mm_ / kMmPerM;
   ball_ = std::make_unique<fields::BallAverager>(positions_, volumes_, radius);
   half_ball_ = std::make_unique<fields::BallAverager>(positions_, volumes_, radius / 2);
@@ -108,10 +120,23 @@ SafetyReport::SafetyReport(const Case& c, const TetMesh& mesh, const fields::Tis
     if (region_[q]) region_volume_ += volumes_[q];
 }
 
-void SafetyReport::add_time(double t, const fields::TissueFields& f) {
+void SafetyReport::observe_step(double t, Vec y) {
+  if (window_.wants_snapshot(t)) window_.add_snapshot(t, evaluator_.deformation_gradients(y));
+}
+
+void SafetyReport::add_time(double t, const fields::TissueFields& f, Vec y) {
+  window_.add_snapshot(t, evaluator_.deformation_gradients(y));
   for (std::size_t i = 0; i < limits_.size(); ++i) {
     const Limit& limit = limits_[i];
-    const std::vector<double>& values = f.point_value[limit.quantity];
+    std::vector<double> windowed;
+    if (limit.windowed) {
+      windowed = window_.rate(window_s_);
+      window_variants_now_ = {ball_->maximum(window_.rate(window_s_ / 2.0)), ball_->maximum(window_.rate(2.0 * window_s_)),
+                              ball_->maximum(f.point_value[limit.quantity])};
+      for (std::size_t v = 0; v < window_variants_.size(); ++v)
+        window_variants_[v].update(window_variants_now_[v].value, t, window_variants_now_[v].position);
+    }
+    const std::vector<double>& values = limit.windowed ? windowed : f.point_value[limit.quantity];
     Now& now = now_[i];
     now.critical_distance = ball_->maximum(values);
     now.above = fields::volume_above(values, volumes_, positions_, limit.limit);
@@ -133,18 +158,20 @@ std::string SafetyReport::history_header() const {
   for (const Limit& limit : limits_)
     header += fmt::format(
         ",critical_distance_{0},critical_distance_{0}_x_mm,critical_distance_{0}_y_mm,critical_distance_{0}_z_mm,"
-        "volume_above_{0}_mm3,region_fraction_above_{0},percentile_{0}",
-        limit.name);
+        "volume_above_{0}_mm3,region_fraction_above_{0},percentile_{0}{1}",
+        limit.name, limit.windowed ? fmt::format(",critical_distance_instantaneous_{}", limit.name) : "");
   return header;
 }
 
 std::string SafetyReport::history_cells() const {
   std::string cells;
-  for (const Now& now : now_) {
+  for (std::size_t i = 0; i < limits_.size(); ++i) {
+    const Now& now = now_[i];
     const Point3& x = now.critical_distance.position;
     cells += fmt::format(",{:.9g},{:.6g},{:.6g},{:.6g},{:.9g},{:.9g},{:.9g}", now.critical_distance.value,
                          x[0] * kMmPerM, x[1] * kMmPerM, x[2] * kMmPerM, now.above.volume * std::pow(kMmPerM, 3),
                          now.region_fraction, now.percentile);
+    if (limits_[i].windowed) cells += fmt::format(",{:.9g}", window_variants_now_[2].value);
   }
   return cells;
 }
@@ -184,6 +211,11 @@ nlohmann::json SafetyReport::summary(const std::array<MaximumOverTime, fields::k
         {"percentile", {{"value", max.percentile.value}, {"time_s", max.percentile.time_s}}},
         {"quantity", kLimitText[i].quantity},
         {"verdict", max.critical_distance.value <= limit.limit ? "pass" : "fail"}};
+    if (limit.windowed) {
+      safety[limit.name]["window_s"] = window_s_;
+      for (std::size_t v = 0; v < window_variants_.size(); ++v)
+        safety[limit.name][kWindowVariantNames[v]] = window_variants_[v].to_json();
+    }
   }
   nlohmann::json out = {{"thresholds", thresholds}, {"safety", safety}};
   bool decided = true, fails = false;
@@ -213,9 +245,12 @@ std::string verdict_line(const nlohmann::json& summary) {
       summary.contains("mesh_resolution")
           ? coarse_mesh_warning(summary["mesh_resolution"]["coarser"].get<std::vector<std::string>>())
           : "";
-  return fmt::format("verdict: {} (critical-distance values: averages over a {:g} mm ball): {}{}",
+  const nlohmann::json& rate = safety.value("strain_rate_per_s", nlohmann::json::object());
+  const std::string window =
+      rate.contains("window_s") ? fmt::format("; the strain rate over {:g} ms", rate["window_s"].get<double>() * 1e3) : "";
+  return fmt::format("verdict: {} (critical-distance values: averages over a {:g} mm ball{}): {}{}",
                      summary["verdict"].get<std::string>(), safety["settings"]["critical_distance_mm"].get<double>(),
-                     judged, mesh_warning.empty() ? "" : "; " + mesh_warning);
+                     window, judged, mesh_warning.empty() ? "" : "; " + mesh_warning);
 }
 
 }  // namespace needlefem::run

@@ -118,7 +118,8 @@ def check_verdict(stdout, summary):
     check(summary["verdict"] == ("fail" if fails else "pass"),
           f"summary verdict {summary['verdict']} (failing: {fails})")
     last = stdout.rstrip().splitlines()[-1]
-    check(last.startswith(f"verdict: {summary['verdict']} (critical-distance values: averages over a 0.25 mm ball): "),
+    check(last.startswith(f"verdict: {summary['verdict']} (critical-distance values: averages over a 0.25 mm ball; "
+                          "the strain rate over 19 ms): "),
           f"last line states the verdict: {last}")
     for name, (words, scale) in VERDICT_WORDS.items():
         value, limit = safety[name]["critical_distance"]["value"] * scale, safety[name]["limit"] * scale
@@ -187,10 +188,35 @@ def block(args):
     close(summary["reactions"]["x_max"][0], sigma / l_end * AREA, 1e-3, "reaction on x_max = nominal stress x area")
     close(-summary["reactions"]["x_min"][0], sigma / l_end * AREA, 1e-3, "reaction on x_min balances x_max")
     check_block_displacement(out, l_end)
+    check_block_windowed_rate(summary, history(out))
     # ln 1.2 = 0.182 < 0.19, 0.2 1/s < 10 1/s and sigma < 120 kPa everywhere in the homogeneous block.
     check_verdict(result.stdout, summary)
     check(summary["verdict"] == "pass", "the block passes every limit")
     check("mesh_resolution" not in summary, "the block scene's mesh is not judged against the brain-tip study")
+
+
+def check_block_windowed_rate(summary, rows):
+    """The strain rate judged is the rate of the largest principal stretch over the window before
+    each output time (physics/fields/strain_rate_window.hpp): for the block stretched along x with
+    l(t) = 1 + 0.2 t it is ln(l(t) / l(t - w)) / w, largest at the first output time after the
+    start (0.25 s), the same at every point; the instantaneous rate's largest is 0.2 at t = 0."""
+    rate = summary["safety"]["strain_rate_per_s"]
+    window = rate["window_s"]
+    check(window == 0.019, f"the strain-rate window is the default 0.019 s ({window})")
+
+    def over(w, t):
+        return math.log((1 + RATE * t) / (1 + RATE * (t - w))) / w
+    for key, w in (("critical_distance", window), ("critical_distance_half_window", window / 2),
+                   ("critical_distance_double_window", 2 * window)):
+        check(rate[key]["time_s"] == 0.25, f"safety.strain_rate_per_s.{key} largest at t = 0.25 s ({rate[key]['time_s']})")
+        close(rate[key]["value"], over(w, 0.25), 1e-4, f"safety.strain_rate_per_s.{key} = ln(l(t)/l(t - {w:g} s))/{w:g} s")
+    instantaneous = rate["critical_distance_instantaneous"]
+    check(instantaneous["time_s"] == 0.0, "the instantaneous rate's critical-distance value is largest at t = 0")
+    close(instantaneous["value"], RATE, 1e-3, "the instantaneous rate's critical-distance value at t = 0 is 0.2 1/s")
+    close(float(rows[-1]["critical_distance_strain_rate_per_s"]), over(window, 1.0), 1e-4,
+          "history.csv: the windowed rate's critical-distance value at t = 1 s")
+    close(float(rows[-1]["critical_distance_instantaneous_strain_rate_per_s"]), RATE / (1 + RATE), 1e-3,
+          "history.csv: the instantaneous rate's critical-distance value at t = 1 s")
 
 
 def attribute_text(dataset, name):

@@ -6,28 +6,13 @@
 #include <cmath>
 
 #include "physics/fields/point_quantities.hpp"
+#include "rotations.hpp"
 
 namespace needlefem::fields {
 namespace {
 
-Mat3d rotation_z(double angle) {
-  Mat3d R = Mat3d::identity();
-  R(0, 0) = R(1, 1) = std::cos(angle);
-  R(0, 1) = -std::sin(angle);
-  R(1, 0) = std::sin(angle);
-  return R;
-}
-
-Mat3d rotation_x(double angle) {
-  Mat3d R = Mat3d::identity();
-  R(1, 1) = R(2, 2) = std::cos(angle);
-  R(1, 2) = -std::sin(angle);
-  R(2, 1) = std::sin(angle);
-  return R;
-}
-
 TEST(PointQuantities, EigenvaluesOfRotatedDiagonalTensors) {
-  const Mat3d R = rotation_z(0.7) * rotation_x(-1.1);
+  const Mat3d R = rotation_about(2, 0.7) * rotation_about(0, -1.1);
   for (const auto& d : {std::array<double, 3>{-2.0, 1.0, 3.0}, std::array<double, 3>{2.0, 2.0, 5.0},
                         std::array<double, 3>{-1e-3, 4.0, 4.0}, std::array<double, 3>{7.0, 7.0, 7.0}}) {
     const Mat3d A = R * Mat3d::diagonal(d[0], d[1], d[2]) * material::transpose(R);
@@ -42,7 +27,7 @@ TEST(PointQuantities, IncompressibleUniaxialStretching) {
   const Mat3d F = Mat3d::diagonal(stretch, lateral, lateral);
   const double lateral_rate = -0.5 * stretch_rate * std::pow(stretch, -1.5);
   const Mat3d F_rate = Mat3d::diagonal(stretch_rate, lateral_rate, lateral_rate);
-  const Mat3d R = rotation_z(0.3);  // a rigid rotation changes none of the invariants
+  const Mat3d R = rotation_about(2, 0.3);  // a rigid rotation changes none of the invariants
   const PointQuantities q = point_quantities(R * F, R * F_rate, Mat3d{});
   EXPECT_NEAR(q.max_log_strain, std::log(stretch), 1e-14);
   EXPECT_NEAR(q.max_strain_rate, stretch_rate / stretch, 1e-14);
@@ -51,8 +36,8 @@ TEST(PointQuantities, IncompressibleUniaxialStretching) {
 
 TEST(PointQuantities, RigidSpinHasNoStrainAndNoStrainRate) {
   const double angle = 0.9, spin = 3.0;  // rad, rad/s
-  const Mat3d F = rotation_z(angle);
-  const Mat3d F_rate = spin * (rotation_z(angle + std::numbers::pi / 2) - Mat3d::diagonal(0, 0, 1));
+  const Mat3d F = rotation_about(2, angle);
+  const Mat3d F_rate = spin * (rotation_about(2, angle + std::numbers::pi / 2) - Mat3d::diagonal(0, 0, 1));
   const PointQuantities q = point_quantities(F, F_rate, Mat3d{});
   EXPECT_NEAR(q.max_log_strain, 0.0, 1e-15);
   EXPECT_NEAR(q.max_strain_rate, 0.0, 1e-14);
@@ -61,7 +46,7 @@ TEST(PointQuantities, RigidSpinHasNoStrainAndNoStrainRate) {
 
 TEST(PointQuantities, UniaxialStressInvariants) {
   const double s = 1234.0;
-  const Mat3d R = rotation_x(0.4);
+  const Mat3d R = rotation_about(0, 0.4);
   const PointQuantities q = point_quantities(Mat3d::identity(), Mat3d{}, R * Mat3d::diagonal(s, 0, 0) * material::transpose(R));
   EXPECT_NEAR(q.von_mises, s, 1e-10 * s);
   EXPECT_NEAR(q.max_principal_stress, s, 1e-10 * s);

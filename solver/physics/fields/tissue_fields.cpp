@@ -147,4 +147,26 @@ TissueFields TissueFieldEvaluator::evaluate(Vec y, Vec ydot) const {
   return out;
 }
 
+std::vector<material::Mat3d> TissueFieldEvaluator::deformation_gradients(Vec y) const {
+  const ReadArray state(y);
+  const auto& dofs = system_.dof_map();
+  const int n = mesh_.nodes_per_tet, points = static_cast<int>(shape_values_.size());
+  std::vector<material::Mat3d> F(point_positions_.size(), material::Mat3d::identity());
+#pragma omp parallel for schedule(static)
+  for (std::size_t k = 0; k < dofs.tissue_tets.size(); ++k) {
+    const auto& tet = mesh_.tet(dofs.tissue_tets[k]);
+    const auto& geometry = system_.geometry(k);
+    for (int q = 0; q < points; ++q) {
+      const double* G = geometry.gradient_at(q);
+      material::Mat3d& Fq = F[k * points + q];
+      for (int a = 0; a < n; ++a)
+        for (int i = 0; i < 3; ++i) {
+          const double u = state.data()[dofs.dof(tet[a], i)];
+          for (int J = 0; J < 3; ++J) Fq(i, J) += u * G[3 * a + J];
+        }
+    }
+  }
+  return F;
+}
+
 }  // namespace needlefem::fields

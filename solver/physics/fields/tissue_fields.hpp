@@ -21,6 +21,7 @@
 #include <petscvec.h>
 
 #include "model/tet_mesh.hpp"
+#include "physics/material/tensor.hpp"
 #include "physics/mechanics/mechanics_system.hpp"
 
 namespace needlefem::fields {
@@ -63,6 +64,10 @@ class TissueFieldEvaluator {
 
   // Throws std::runtime_error for an inverted element (the integrator never accepts one).
   TissueFields evaluate(Vec y, Vec ydot) const;
+
+  // The deformation gradient F = I + ∂u/∂X at every tissue quadrature point (in the order of
+  // point_positions()), from the displacements in y alone: cheap enough for every accepted step.
+  std::vector<material::Mat3d> deformation_gradients(Vec y) const;
 
   // Per tissue quadrature point (element by element): reference position (m) and reference
   // volume w_q (quadrature weight times det J, m³).
