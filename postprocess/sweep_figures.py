@@ -233,7 +233,9 @@ def fillet(sweep, png, grid=None):
 
 
 def strain_rate(sweep, png, grid=None):
-    """Fig. 6: max strain rate against time for each insertion/rotation speed."""
+    """Fig. 6: max strain rate against time for each insertion/rotation speed: the point maxima
+    (solid, what paper 001 plotted) and, dashed in the same colour, the value the verdict judges
+    (the critical-distance rate sustained over the strain-rate window, docs/safety.md)."""
     limits = sweep.limits()
     fig, ax = plt.subplots(figsize=(7, 5))
     points = sweep.indices(grid)
@@ -248,8 +250,11 @@ def strain_rate(sweep, png, grid=None):
         label = (f"{names[motion]}: " if motion in names else "") + motion_label(motion)
         if several_tips:
             label += f", {tip_label(tip_of(summaries[i]))}"
-        ax.plot(h["time_s"], h["max_strain_rate"], ms=4, label=label, **style)
-    ax.axhline(limits["strain_rate_per_s"], color="#d62728", ls="--",
+        ax.plot(h["time_s"], h["max_strain_rate"], ms=4, label=label + " (point maximum)", **style)
+        if "critical_distance_strain_rate_per_s" in h:
+            ax.plot(h["time_s"], h["critical_distance_strain_rate_per_s"], ls="--", ms=3,
+                    label=label + " (judged: ball average over the window)", **style)
+    ax.axhline(limits["strain_rate_per_s"], color="#d62728", ls=":",
                label=f"strain-rate limit {limits['strain_rate_per_s']:g} 1/s")
     return finish_axes(fig, ax, png, points, "time [s]", "max principal strain rate [1/s]",
                 "Tissue strain rate against insertion and rotation speed")

@@ -411,11 +411,11 @@ std::vector<KeySpec> build_schema() {
            "(10-20 um) and a needle edge, smaller than the needles (r >= 0.32 mm) and than the "
            "millimetre-scale in-vivo tissue tests behind the limits (paper 001, refs. 15-16); summary.json "
            "also gives the values at l/2 and 2 l (physics/fields/safety_metrics.hpp)"),
-      real("thresholds.strain_rate_window_s", 0.019, 1e-5, 10.0,
-           "Window over which the strain rate is judged (the rate of the largest principal stretch over it). 0.019 "
-           "s = 0.19 / (10 1/s): the time the tissue tests behind the limits (paper 001, refs. 15-16) took to reach "
-           "the strain limit at the rate limit; a shorter slip burst counts by the strain it delivers. Also "
-           "reported at half and twice it (physics/fields/strain_rate_window.hpp)"),
+      real("thresholds.strain_rate_window_s", 0.01, 1e-5, 10.0,
+           "Window over which the strain rate is judged (the rate of the largest principal stretch over it). "
+           "0.01 s: the time 10 1/s takes to deliver 10 % strain; diffuse axonal injury is seen at strains over "
+           "10 % and rates over 10 1/s together (Rashid et al. 2013, arXiv:1302.4175). Also reported at half "
+           "and twice it (physics/fields/strain_rate_window.hpp)"),
       real("thresholds.percentile", 99.0, 1.0, 99.99,
            "Percentile P of each limited field over the region near the needle: the value the hottest "
            "(100 - P) % of that region's volume reaches"),
