@@ -32,12 +32,12 @@ constexpr LimitText kLimitText[] = {
     {"strain_rate_per_s", fields::kStrainRate, "max principal strain rate",
      "max principal strain rate (1/s) sustained over window_s: ln of the largest principal stretch of the "
      "deformation over the window before t (F(t) F(t - window_s)^-1), divided by window_s, judged at the output "
-     "times and at accepted steps a quarter window apart between them; for "
-     "a steady stretching it is the largest eigenvalue of the rate of deformation D = sym(dF/dt F^-1), the "
-     "stretch rate of the uniaxial tests the limit comes from, and a slip burst counts by the strain it "
-     "delivers. critical_distance_instantaneous is the same ball average of the instantaneous largest "
-     "eigenvalue of D at the output times (what paper 001 reported); max.equivalent_strain_rate_per_s, sqrt(2/3 D:D), counts shear too "
-     "(2/sqrt(3) times larger in simple shear) and is reported, not judged",
+     "times and at accepted steps a quarter window apart between them; for a steady stretching it is the largest "
+     "eigenvalue of the rate of deformation D = sym(dF/dt F^-1), the stretch rate of the uniaxial tests the limit "
+     "comes from, and a slip burst counts by the strain it delivers. critical_distance_instantaneous is the same "
+     "ball average of the instantaneous largest eigenvalue of D at the output times (what paper 001 reported); "
+     "max.equivalent_strain_rate_per_s, sqrt(2/3 D:D), counts shear too (2/sqrt(3) times larger in simple shear) "
+     "and is reported, not judged",
      "1/s", 1.0, true},
     {"stress_pa", fields::kVonMises, "von Mises stress", "von Mises (equivalent) Cauchy stress, Pa", "kPa", 1e-3,
      false}};
@@ -269,8 +269,9 @@ std::string verdict_line(const nlohmann::json& summary) {
           ? coarse_mesh_warning(summary["mesh_resolution"]["coarser"].get<std::vector<std::string>>())
           : "";
   const nlohmann::json& rate = safety.value("strain_rate_per_s", nlohmann::json::object());
-  const std::string window =
-      rate.contains("window_s") ? fmt::format("; the strain rate over {:g} ms", rate["window_s"].get<double>() * 1e3) : "";
+  const std::string window = rate.contains("window_s")
+                                 ? fmt::format("; the strain rate over {:g} ms", rate["window_s"].get<double>() * 1e3)
+                                 : "";
   return fmt::format("verdict: {} (critical-distance values: averages over a {:g} mm ball{}): {}{}",
                      summary["verdict"].get<std::string>(), safety["settings"]["critical_distance_mm"].get<double>(),
                      window, judged, mesh_warning.empty() ? "" : "; " + mesh_warning);
