@@ -449,7 +449,7 @@ class RunPass {
     if (record_.elastic_energy_j > 0.0)
       record_.max_kinetic_to_elastic = std::max(record_.max_kinetic_to_elastic, f.kinetic_energy / record_.elastic_energy_j);
     record_solver_counts(integrator, system);
-    safety_->add_time(t, f, integrator.state());
+    safety_->add_time(t, f);
     out.history.row(t, record_.counters, f, record_.reactions, record_.elastic_energy_j,
                     safety_->history_cells() + (needle_ ? needle_->history_cells() : "") +
                         (scene_loads_ ? scene_loads_->history_cells(t, integrator.state(), integrator.state_rate()) : ""));

@@ -128,8 +128,8 @@ void SafetyReport::observe_step(double t, Vec y) {
   judge_windowed(t);
 }
 
-void SafetyReport::add_time(double t, const fields::TissueFields& f, Vec y) {
-  window_.add_snapshot(t, evaluator_.deformation_gradients(y));
+void SafetyReport::add_time(double t, const fields::TissueFields& f) {
+  window_.add_snapshot(t, f.deformation_gradient);
   judge_windowed(t);
   for (std::size_t i = 0; i < limits_.size(); ++i) {
     const std::vector<double>& values = f.point_value[limits_[i].quantity];
@@ -145,16 +145,16 @@ void SafetyReport::add_time(double t, const fields::TissueFields& f, Vec y) {
 }
 
 void SafetyReport::judge_windowed(double t) {
-  for (std::size_t i = 0; i < limits_.size(); ++i) {
-    if (!limits_[i].windowed) continue;
-    const std::vector<double> values = window_.rate(window_s_);
-    now_[i] = measure(limits_[i], values);
-    keep_maximum(i, t, now_[i], values);
-    window_variants_now_[kHalfWindow] = ball_->maximum(window_.rate(window_s_ / 2.0));
-    window_variants_now_[kDoubleWindow] = ball_->maximum(window_.rate(2.0 * window_s_));
-    for (int v : {kHalfWindow, kDoubleWindow})
-      window_variants_[v].update(window_variants_now_[v].value, t, window_variants_now_[v].position);
-  }
+  const std::vector<double> rate = window_.rate(window_s_);
+  for (std::size_t i = 0; i < limits_.size(); ++i)
+    if (limits_[i].windowed) {
+      now_[i] = measure(limits_[i], rate);
+      keep_maximum(i, t, now_[i], rate);
+    }
+  window_variants_now_[kHalfWindow] = ball_->maximum(window_.rate(window_s_ / 2.0));
+  window_variants_now_[kDoubleWindow] = ball_->maximum(window_.rate(2.0 * window_s_));
+  for (int v : {kHalfWindow, kDoubleWindow})
+    window_variants_[v].update(window_variants_now_[v].value, t, window_variants_now_[v].position);
 }
 
 SafetyReport::Now SafetyReport::measure(const Limit& limit, const std::vector<double>& values) const {

@@ -68,8 +68,8 @@ class SafetyReport {
   // After an accepted step at t between output times, state y: when a quarter of the strain-rate
   // window has passed since the last, keeps the deformation gradient and judges the windowed rate.
   void observe_step(double t, Vec y);
-  // Evaluates the metrics of the fields at output time t, state y (and keeps their maxima over time).
-  void add_time(double t, const fields::TissueFields& f, Vec y);
+  // Evaluates the metrics of the fields at output time t (and keeps their maxima over time).
+  void add_time(double t, const fields::TissueFields& f);
   std::string history_header() const;  // starts with a comma
   std::string history_cells() const;   // of the last add_time(), starts with a comma
   // "verdict", "thresholds" and "safety" of summary.json, given the point maxima over time;
@@ -104,13 +104,13 @@ class SafetyReport {
   const fields::TissueFieldEvaluator& evaluator_;
   double window_s_;
   fields::StrainRateWindow window_;
-  // The windowed limit's critical-distance values at half and twice the window and of the
-  // instantaneous field: at the last output time and their maxima over time.
+  // The strain-rate limit's (the windowed limit's) critical-distance values at half and twice
+  // the window and of the instantaneous field: at the last output time and their maxima over time.
   std::array<fields::LocatedValue, 3> window_variants_now_{};
   std::array<MaximumOverTime, 3> window_variants_;
   Now measure(const Limit& limit, const std::vector<double>& values) const;
   void keep_maximum(std::size_t i, double t, const Now& now, const std::vector<double>& values);
-  // The windowed limits' metrics at t, the last snapshot's time, and their maxima over time.
+  // The windowed strain rate's metrics at t, the last snapshot's time, and their maxima over time.
   void judge_windowed(double t);
 
   std::vector<Now> now_;

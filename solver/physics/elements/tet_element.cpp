@@ -22,14 +22,10 @@ Mat3d to_mat3(const std::array<double, 9>& a) {
 // before any stress). False, with result.inverted set, if det F <= 0 at some point.
 bool deformation_gradients(const ElementGeometry& geometry, const double* displacement, ElementResult& result,
                            double& current_volume) {
-  const int n = geometry.nodes;
   current_volume = 0.0;
   for (int q = 0; q < geometry.points; ++q) {
-    const double* G = geometry.gradient_at(q);
     Mat3d F = Mat3d::identity();
-    for (int a = 0; a < n; ++a)
-      for (int i = 0; i < 3; ++i)
-        for (int J = 0; J < 3; ++J) F(i, J) += displacement[3 * a + i] * G[3 * a + J];
+    add_field_gradient(geometry, q, displacement, F);
     const double det_f = material::det(F);
     if (!(det_f > 0.0)) {
       result.inverted = true;
@@ -169,6 +165,13 @@ ElementGeometry element_geometry(int nodes_per_tet, const double* coordinates) {
     g.volume += g.weight[q];
   }
   return g;
+}
+
+void add_field_gradient(const ElementGeometry& geometry, int q, const double* values, Mat3d& sum) {
+  const double* G = geometry.gradient_at(q);
+  for (int a = 0; a < geometry.nodes; ++a)
+    for (int i = 0; i < 3; ++i)
+      for (int J = 0; J < 3; ++J) sum(i, J) += values[3 * a + i] * G[3 * a + J];
 }
 
 void green_strain_operator(const std::array<double, 9>& F, const double* gradient, int nodes, double* B) {

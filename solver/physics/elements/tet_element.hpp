@@ -79,6 +79,10 @@ struct ElementGeometry {
 // inverted reference element.
 ElementGeometry element_geometry(int nodes_per_tet, const double* coordinates);
 
+// sum += ∂v/∂X = Σ_a v_a ⊗ G_a at point q of an element whose node values are `values`
+// (nodes x 3): F from the identity and the displacements, Ḟ from zero and the velocities.
+void add_field_gradient(const ElementGeometry& geometry, int q, const double* values, material::Mat3d& sum);
+
 // What an evaluation reports at each quadrature point, for output fields and the condensation
 // of the viscous internal variables.
 struct PointResult {

@@ -56,6 +56,7 @@ TissueFields TissueFieldEvaluator::node_fields(const double* state, const double
   for (auto& cells : out.cell_maximum) cells.assign(mesh_.tet_count(), 0.0);
   for (auto& m : out.maximum) m.value = -std::numeric_limits<double>::infinity();
   for (auto& values : out.point_value) values.assign(point_positions_.size(), 0.0);
+  out.deformation_gradient.resize(point_positions_.size());
   return out;
 }
 
@@ -65,13 +66,9 @@ bool TissueFieldEvaluator::evaluate_element(std::size_t k, const double* state, 
   const auto& dofs = system_.dof_map();
   const int n = mesh_.nodes_per_tet, points = static_cast<int>(shape_values_.size());
   const std::size_t e = dofs.tissue_tets[k];
-  std::array<double, elements::kMaxElementDofs> u_e{}, v_e{};
-  for (int a = 0; a < n; ++a)
-    for (int c = 0; c < 3; ++c) {
-      const int dof = dofs.dof(mesh_.tet(e)[a], c);
-      u_e[3 * a + c] = state[dof];
-      v_e[3 * a + c] = rate[dof];
-    }
+  std::array<double, elements::kMaxElementDofs> u_e, v_e;
+  gather_element_values(k, state, u_e.data());
+  gather_element_values(k, rate, v_e.data());
   const double* viscous = system_.kernel().prony_terms() ? state + system_.viscous_offset(k) : nullptr;
   const auto& geometry = system_.geometry(k);
   const elements::ElementResult result =
@@ -82,15 +79,13 @@ bool TissueFieldEvaluator::evaluate_element(std::size_t k, const double* state, 
   Mat3d average_stress;
   for (int q = 0; q < points; ++q) {
     const double w = geometry.weight[q];
-    const double* G = geometry.gradient_at(q);
     Mat3d F, F_rate;
     F.a = result.points[q].deformation_gradient;
+    out.deformation_gradient[k * points + q] = F;
+    elements::add_field_gradient(geometry, q, v_e.data(), F_rate);
     Point3 velocity{};
     for (int a = 0; a < n; ++a)
-      for (int i = 0; i < 3; ++i) {
-        velocity[i] += shape_values_[q][a] * v_e[3 * a + i];
-        for (int J = 0; J < 3; ++J) F_rate(i, J) += v_e[3 * a + i] * G[3 * a + J];
-      }
+      for (int i = 0; i < 3; ++i) velocity[i] += shape_values_[q][a] * v_e[3 * a + i];
     kinetic_energy +=
         0.5 * density_ * w * (velocity[0] * velocity[0] + velocity[1] * velocity[1] + velocity[2] * velocity[2]);
 
@@ -149,24 +144,22 @@ TissueFields TissueFieldEvaluator::evaluate(Vec y, Vec ydot) const {
 
 std::vector<material::Mat3d> TissueFieldEvaluator::deformation_gradients(Vec y) const {
   const ReadArray state(y);
-  const auto& dofs = system_.dof_map();
-  const int n = mesh_.nodes_per_tet, points = static_cast<int>(shape_values_.size());
+  const int points = static_cast<int>(shape_values_.size());
   std::vector<material::Mat3d> F(point_positions_.size(), material::Mat3d::identity());
 #pragma omp parallel for schedule(static)
-  for (std::size_t k = 0; k < dofs.tissue_tets.size(); ++k) {
-    const auto& tet = mesh_.tet(dofs.tissue_tets[k]);
-    const auto& geometry = system_.geometry(k);
-    for (int q = 0; q < points; ++q) {
-      const double* G = geometry.gradient_at(q);
-      material::Mat3d& Fq = F[k * points + q];
-      for (int a = 0; a < n; ++a)
-        for (int i = 0; i < 3; ++i) {
-          const double u = state.data()[dofs.dof(tet[a], i)];
-          for (int J = 0; J < 3; ++J) Fq(i, J) += u * G[3 * a + J];
-        }
-    }
+  for (std::size_t k = 0; k < system_.dof_map().tissue_tets.size(); ++k) {
+    std::array<double, elements::kMaxElementDofs> u_e;
+    gather_element_values(k, state.data(), u_e.data());
+    for (int q = 0; q < points; ++q) elements::add_field_gradient(system_.geometry(k), q, u_e.data(), F[k * points + q]);
   }
   return F;
+}
+
+void TissueFieldEvaluator::gather_element_values(std::size_t k, const double* values, double* element_values) const {
+  const auto& dofs = system_.dof_map();
+  const auto& tet = mesh_.tet(dofs.tissue_tets[k]);
+  for (int a = 0; a < mesh_.nodes_per_tet; ++a)
+    for (int c = 0; c < 3; ++c) element_values[3 * a + c] = values[dofs.dof(tet[a], c)];
 }
 
 }  // namespace needlefem::fields

@@ -7,7 +7,7 @@
 //                 (what safety limits are checked against; zero on non-tissue cells),
 //   maxima        per scalar quantity, the maximum over all tissue quadrature points with that
 //                 point's reference position X_q = Σ_a N_a(ξ_q) X_a,
-//   point values  every scalar quantity at every tissue quadrature point, in the order of
+//   point values  every scalar quantity and F at every tissue quadrature point, in the order of
 //                 point_positions() and point_volumes() (for the mesh-objective safety
 //                 metrics, safety_metrics.hpp),
 //   kinetic energy  T = 1/2 ρ ∫ |u'|² dV (the quasi-static model neglects it; reported to show
@@ -54,6 +54,7 @@ struct TissueFields {
   std::array<std::vector<double>, kScalarQuantities> cell_maximum;  // mesh tets each
   std::array<PointMaximum, kScalarQuantities> maximum;
   std::array<std::vector<double>, kScalarQuantities> point_value;  // tissue quadrature points each
+  std::vector<material::Mat3d> deformation_gradient;              // F at each tissue quadrature point
   double kinetic_energy = 0.0;        // J
 };
 
@@ -77,6 +78,8 @@ class TissueFieldEvaluator {
  private:
   // Node fields filled, every other array sized and zeroed (maxima at -inf).
   TissueFields node_fields(const double* state, const double* rate) const;
+  // Tissue element k's node values (nodes x 3) of the node field `values` (a state or a rate).
+  void gather_element_values(std::size_t k, const double* values, double* element_values) const;
   // Tissue element k's point values, cell maxima and mean Cauchy stress into `out`; the first
   // point of each of its maxima into `largest_point` and its kinetic energy added to
   // `kinetic_energy`. False (nothing written) for an inverted element.
