@@ -380,8 +380,8 @@ std::vector<KeySpec> build_schema() {
            "i.e. below the pressure s mu0 / 2; 0 gives the plain kink (physics/contact/penalty_contact.hpp)",
            false),
       real("contact.elastic_slip", 0.005, 0.0, 1.0,
-           "Return-map friction: the elastic slip scale s0, per contact face size (Abaqus's default 0.005): the "
-           "stick stiffness is mu p / s0 at rest, falling smoothly to zero at 2 s0, where the point slides"),
+           "Return-map friction: elastic slip s0 per mean contact face size, one s0 per surface (Abaqus's 0.005): "
+           "the stick stiffness is mu p / s0 at rest, falling to zero at 2 s0, where the point slides"),
       real("contact.rate_strengthening_s_per_m", 2.0, 0.0, 1e6,
            "Return-map friction: beta in the rate-strengthening traction -beta p v_T added to the Coulomb "
            "traction (friction coefficient mu + beta |v_T| while sliding at v_T)", false),

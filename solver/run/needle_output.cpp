@@ -144,17 +144,15 @@ nlohmann::json NeedleOutput::summary() const {
                                 "cavity nodes on those edges start up to about this far from the needle"},
                   {"cavity_faces", contact_.contact().face_count()}};
   if (deflection_check_) {
-    double smallest_slip = std::numeric_limits<double>::infinity();
-    for (std::size_t f = 0; f < contact_.contact().face_count(); ++f)
-      smallest_slip = std::min(smallest_slip, contact_.contact().elastic_slip(f));
+    const double elastic_slip = contact_.contact().elastic_slip();
     const Point3& where = largest_deflection_.where;
     s["needle"]["deflection_check"] = {
         {"max_deflection_m", largest_deflection_.max_m},
         {"time_s", largest_deflection_time_},
         {"position_mm", {where[0] * kMmPerM, where[1] * kMmPerM, where[2] * kMmPerM}},
         {"elastic_energy_j", largest_deflection_.elastic_energy_j},
-        {"smallest_elastic_slip_m", smallest_slip},
-        {"deflection_per_elastic_slip", largest_deflection_.max_m / smallest_slip},
+        {"elastic_slip_m", elastic_slip},
+        {"deflection_per_elastic_slip", largest_deflection_.max_m / elastic_slip},
         {"needle_travel_m", needle_travel_m_},
         {"deflection_per_travel", needle_travel_m_ > 0.0 ? largest_deflection_.max_m / needle_travel_m_ : 0.0},
         {"youngs_modulus_pa", youngs_modulus_pa_},
@@ -163,7 +161,7 @@ nlohmann::json NeedleOutput::summary() const {
         {"needle_elements", needle_elements_},
         {"seconds", elasticity_seconds_},
         {"note", "one-way check: the linear-elastic tip clamped on its rear face under the rigid run's contact "
-                 "loads (physics/contact/needle_elasticity.hpp); a deflection far below the smallest elastic "
+                 "loads (physics/contact/needle_elasticity.hpp); a deflection far below the elastic "
                  "slip s0 (the contact's own resolution) cannot change the tissue's answer"}};
   }
   return s;

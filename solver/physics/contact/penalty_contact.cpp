@@ -208,6 +208,7 @@ PenaltyContact::PenaltyContact(const TetMesh& mesh, const std::string& surface,
   face_nodes_ = found->second;
   const int m = nodes_per_face_;
   std::array<double, 6> dN_dxi{}, dN_deta{};
+  double mean_face_size = 0.0;
   for (std::size_t f = 0; f < face_nodes_.size() / m; ++f) {
     Face face;
     double area = 0.0;
@@ -235,9 +236,10 @@ PenaltyContact::PenaltyContact(const TetMesh& mesh, const std::string& surface,
     const double size = parameters.face_size_scale * std::sqrt(2.0 * area);
     face.penalty = parameters.penalty_factor * parameters.reference_modulus / size;
     face.smoothing_depth = parameters.penalty_smoothing * size / parameters.penalty_factor;
-    face.elastic_slip = parameters.elastic_slip * size;
+    mean_face_size += size / static_cast<double>(face_nodes_.size() / m);
     faces_.push_back(std::move(face));
   }
+  elastic_slip_ = parameters.elastic_slip * mean_face_size;
 }
 
 FaceTerms PenaltyContact::face_terms(std::size_t face, const double* x, const double* v, double t, double cj,
@@ -268,7 +270,7 @@ FaceTerms PenaltyContact::face_terms(std::size_t face, const double* x, const do
     Tangential tangential;
     if (parameters_.friction_law == FrictionLaw::return_map) {
       tangential = return_map(p, position, obstacle_->from_body(point.anchor, t), normal_law, mu,
-                              faces_[face].elastic_slip, with_jacobian, coupling);
+                              elastic_slip_, with_jacobian, coupling);
       if (parameters_.rate_strengthening > 0.0)
         add_rate_strengthening(p, velocity, normal_law, parameters_.rate_strengthening, with_jacobian, coupling,
                                tangential);
@@ -357,7 +359,7 @@ void PenaltyContact::accept_step(double t, const double* y, const double* ydot, 
       Point3 anchor = position;  // out of contact: re-anchor where the point is
       if (depth >= 0.0) {
         const Point3 slip = tangential_part(p.normal, difference(position, obstacle_->from_body(point.anchor, t)));
-        const double size = std::sqrt(dot(slip, slip)), allowed = kSlidingSlip * faces_[f].elastic_slip;
+        const double size = std::sqrt(dot(slip, slip)), allowed = kSlidingSlip * elastic_slip_;
         const double kept = size > allowed ? allowed / size : 1.0;  // a slipping point drags its anchor along
         for (int i = 0; i < 3; ++i) anchor[i] -= kept * slip[i];
       }
