@@ -153,11 +153,10 @@ std::vector<KeySpec> build_schema() {
       real("needle.cad_facet_um", 50.0, 0.0, 1000.0,
            "needle.kind = \"cad\": largest facet of the triangulation the contact needle is (inside flat faces, "
            "away from curved edges; curved faces and edges follow needle.cad_facet_deg)"),
-      real("needle.cad_facet_deg", 1.5, 0.0, 5.0,
+      real("needle.cad_facet_deg", 0.75, 0.0, 5.0,
            "needle.kind = \"cad\": angle a facet of the contact needle spans on a curved face (facet = radius x "
-           "angle). The normals of neighbouring facets differ by it: 3 deg (20 um facets on the paper's tip) "
-           "stalled Newton where the tissue slides over them, 1.5 deg ran like the analytic needle "
-           "(docs/accuracy.md section 9)"),
+           "angle). The normals of neighbouring facets differ by it: on the paper's tip 1.5 deg stalled Newton at "
+           "t = 0.068 s where the tissue slides over them, 0.75 deg ran like the analytic needle (docs/accuracy.md 9)"),
       real("needle.radius_mm", 0.5, 0.0, 100.0, "Needle (shaft and head) radius r"),
       real("needle.bevel_deg", 20.0, 0.0, 90.0,
            "Bevel angle alpha between the bevel plane and the needle axis (ignored when fillet = radius)"),

@@ -185,26 +185,23 @@ void CadNeedleShape::trim_core(const TriangleSoup& tip, TriangleSoup offset, con
   const double tolerance = kTrimTolerance * edge_radius_;
   auto r = [&](const Point3& y) { return surface_->closest(y).distance - edge_radius_; };
   std::vector<double> r_at(nv);
+#pragma omp parallel for schedule(dynamic, 256)
   for (std::size_t v = 0; v < nv; ++v) r_at[v] = r(offset.vertices[v]);
   auto kept_vertex = [&](int v) { return r_at[v] >= -tolerance; };
-  std::vector<char> vertex_whole(nv, 1);  // every triangle around it kept whole and unturned
-  std::vector<char> triangle_whole;
-  for (std::size_t f = 0; f < tip.triangles.size(); ++f) {
+  // Per triangle: kept whole, or cut, with the cut point on each edge (a, a+1) whose ends differ
+  // (the bisections are the trimming's cost, done on the threads; pieces are assembled in order).
+  const std::size_t nt = tip.triangles.size();
+  std::vector<char> whole(nt);
+  std::vector<std::array<Point3, 3>> cut_point(nt);
+#pragma omp parallel for schedule(dynamic, 256)
+  for (std::size_t f = 0; f < nt; ++f) {
     const auto& t = tip.triangles[f];
     const Point3 n = cross(sub(offset.vertices[t[1]], offset.vertices[t[0]]), sub(offset.vertices[t[2]], offset.vertices[t[0]]));
     const bool turned = dot(n, facet_normal[f]) <= 0.0;
-    const int kept = kept_vertex(t[0]) + kept_vertex(t[1]) + kept_vertex(t[2]);
-    if (kept == 3 && !turned) {
-      offset.triangles.push_back(t);
-      triangle_whole.push_back(1);
-      continue;
-    }
-    for (int a = 0; a < 3; ++a) vertex_whole[t[a]] = 0;
-    if (kept == 0) continue;
-    std::vector<int> polygon;
+    whole[f] = kept_vertex(t[0]) && kept_vertex(t[1]) && kept_vertex(t[2]) && !turned;
+    if (whole[f]) continue;
     for (int a = 0; a < 3; ++a) {
       const int i = t[a], j = t[(a + 1) % 3];
-      if (kept_vertex(i)) polygon.push_back(i);
       if (kept_vertex(i) == kept_vertex(j)) continue;
       const int inner = kept_vertex(i) ? i : j;
       Point3 in = offset.vertices[inner], out = offset.vertices[inner == i ? j : i];
@@ -213,8 +210,26 @@ void CadNeedleShape::trim_core(const TriangleSoup& tip, TriangleSoup offset, con
         const Point3 mid{0.5 * (in[0] + out[0]), 0.5 * (in[1] + out[1]), 0.5 * (in[2] + out[2])};
         (r(mid) >= level ? in : out) = mid;
       }
+      cut_point[f][a] = in;
+    }
+  }
+  std::vector<char> vertex_whole(nv, 1);  // every triangle around it kept whole and unturned
+  std::vector<char> triangle_whole;
+  for (std::size_t f = 0; f < nt; ++f) {
+    const auto& t = tip.triangles[f];
+    if (whole[f]) {
+      offset.triangles.push_back(t);
+      triangle_whole.push_back(1);
+      continue;
+    }
+    for (int a = 0; a < 3; ++a) vertex_whole[t[a]] = 0;
+    std::vector<int> polygon;
+    for (int a = 0; a < 3; ++a) {
+      const int i = t[a], j = t[(a + 1) % 3];
+      if (kept_vertex(i)) polygon.push_back(i);
+      if (kept_vertex(i) == kept_vertex(j)) continue;
       polygon.push_back(static_cast<int>(offset.vertices.size()));
-      offset.vertices.push_back(in);
+      offset.vertices.push_back(cut_point[f][a]);
     }
     for (std::size_t k = 1; k + 1 < polygon.size(); ++k) {
       const std::array<int, 3> piece{polygon[0], polygon[k], polygon[k + 1]};

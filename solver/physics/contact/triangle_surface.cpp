@@ -4,7 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
+#include <cstdint>
+#include <unordered_map>
 #include <stdexcept>
 #include <utility>
 
@@ -50,7 +51,11 @@ std::pair<Point3, int> closest_on_triangle(const Point3& p, const Point3& a, con
 
 constexpr int kLeafSize = 4;
 
-std::pair<int, int> edge_key(int a, int b) { return a < b ? std::make_pair(a, b) : std::make_pair(b, a); }
+// An undirected edge's key: its two vertex indices, smaller first.
+std::uint64_t edge_key(int a, int b) {
+  const auto [lo, hi] = std::minmax(a, b);
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(lo)) << 32) | static_cast<std::uint32_t>(hi);
+}
 
 }  // namespace
 
@@ -60,7 +65,8 @@ TriangleSurface::TriangleSurface(TriangleSoup soup) : soup_(std::move(soup)) {
   if (T.empty()) throw std::invalid_argument("TriangleSurface: no triangles");
   face_normals_.resize(T.size());
   vertex_normals_.assign(V.size(), Point3{});
-  std::map<std::pair<int, int>, Point3> edge_sum;
+  std::unordered_map<std::uint64_t, Point3> edge_sum;
+  edge_sum.reserve(2 * T.size());
   for (std::size_t t = 0; t < T.size(); ++t) {
     const auto& [i, j, k] = T[t];
     face_normals_[t] = unit(cross(sub(V[j], V[i]), sub(V[k], V[i])));
@@ -194,7 +200,8 @@ double TriangleSurface::signed_distance(const Point3& x) const {
 
 std::size_t orient_outward(TriangleSoup& soup) {
   auto& T = soup.triangles;
-  std::map<std::pair<int, int>, std::vector<int>> users;  // undirected edge -> triangles
+  std::unordered_map<std::uint64_t, std::vector<int>> users;  // undirected edge -> triangles
+  users.reserve(2 * T.size());
   for (std::size_t t = 0; t < T.size(); ++t)
     for (int a = 0; a < 3; ++a) users[edge_key(T[t][a], T[t][(a + 1) % 3])].push_back(static_cast<int>(t));
   std::size_t open = 0;
