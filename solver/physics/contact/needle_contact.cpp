@@ -20,6 +20,7 @@ namespace needlefem::contact {
 namespace {
 
 const std::string kCavity = "cavity";
+constexpr double kMPerUm = 1e-6;
 
 // Shape-function values at a triangle's centroid: TRI3 1/3 each; TRI6 corners -1/9, edges 4/9.
 double centroid_weight(int nodes_per_face, int a) {
@@ -82,7 +83,6 @@ std::shared_ptr<const CadNeedleShape> cad_needle_shape(const Case& input, const 
 
 std::shared_ptr<const Needle> needle_from_case(const Case& input, std::shared_ptr<const Needle>* sharp,
                                                std::shared_ptr<const HeadTilt> tilt) {
-  constexpr double kMPerUm = 1e-6;
   constexpr double kSharpEdge = 1e-12;  // m: the needle without its edge rounding
   const NeedleTip tip = needle_tip_from_case(input);
   const double edge_radius = input.real("needle.edge_radius_um") * kMPerUm;
@@ -118,8 +118,10 @@ RoundedCavity round_cavity_to_needle(const Case& input, TetMesh& mesh) {
   // ρ is a point sharper than about 11°, where the rounded needle in contact is no longer the tip's
   // shape. Measured: every Table I design and shipped tip family at most 2.0 ρ (r 1.25/20°/0.15);
   // the Quincke's lancet point left sharp 6.7 ρ.
-  const double edge_radius_m = input.real("needle.edge_radius_um") * 1e-6;
-  if (rounded.rounding.largest_move_m > kRoundingMoveLimit * edge_radius_m)
+  // The case's radius, not the needle's: a fully rounded tip has no edges to round (0) but its
+  // nodes still move by round-off.
+  const double edge_radius = input.real("needle.edge_radius_um") * kMPerUm;
+  if (rounded.rounding.largest_move_m > kRoundingMoveLimit * edge_radius)
     throw input.error("needle.edge_radius_um",
                       fmt::format("rounding the cavity to the needle's edges moved it by up to {:.3g} mm, more than "
                                   "{} edge radii: the tip has a point sharper than this radius rounds, so the needle in "

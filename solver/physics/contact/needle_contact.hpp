@@ -59,9 +59,10 @@ bool needle_contact_enabled(const Case& input);
 // With needle contact, moves the mesh's cavity onto the rounded needle of the case at t = 0
 // (model/cavity_rounding.hpp), a user's mesh (scene.mesh_file) once its cavity has been checked
 // against the sharp needle (CaseError naming the largest offset); a tied or absent needle leaves
-// the mesh as it is. A CaseError naming needle.edge_radius_um when the rounding moves the cavity
-// by more than four edge radii (a point sharper than the radius can round). Returns what moved and the needle (null without needle contact), to be the
-// needle in contact too: a CAD tip's triangulation and core are then built once.
+// the mesh as it is; a CaseError naming needle.edge_radius_um when the rounding moves the cavity
+// by more than four edge radii (a point sharper than the radius can round). Returns what moved
+// and the needle (null without needle contact), to be the needle in contact too: a CAD tip's
+// triangulation and core are then built once.
 struct RoundedCavity {
   std::shared_ptr<const Needle> needle;
   CavityRounding rounding;
