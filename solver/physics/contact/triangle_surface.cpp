@@ -107,8 +107,24 @@ int TriangleSurface::build(int first, int count) {
   const int id = static_cast<int>(nodes_.size());
   nodes_.push_back(node);
   if (count <= kLeafSize) {
-    nodes_[id].first = first;
-    nodes_[id].count = count;
+    Node& leaf = nodes_[id];
+    leaf.first = first;
+    leaf.count = count;
+    // Mean normal, each face's turned to agree with the first's (a leaf's triangles need not be
+    // consistently oriented); a leaf folded over an edge gets a thick slab, never a wrong one.
+    for (int i = first; i < first + count; ++i) {
+      const Point3& n = face_normals_[static_cast<std::size_t>(order_[i])];
+      leaf.slab_normal = add(leaf.slab_normal, scale(n, dot(n, face_normals_[order_[first]]) < 0.0 ? -1.0 : 1.0));
+    }
+    leaf.slab_normal = unit(leaf.slab_normal);
+    leaf.slab_lo = std::numeric_limits<double>::max();
+    leaf.slab_hi = std::numeric_limits<double>::lowest();
+    for (int i = first; i < first + count; ++i)
+      for (int a = 0; a < 3; ++a) {
+        const double s = dot(leaf.slab_normal, V[T[order_[i]][a]]);
+        leaf.slab_lo = std::min(leaf.slab_lo, s);
+        leaf.slab_hi = std::max(leaf.slab_hi, s);
+      }
     return id;
   }
   int axis = 0;
@@ -176,6 +192,10 @@ TriangleSurface::Closest TriangleSurface::closest(const Point3& x) const {
     if (d2 >= best.distance * best.distance) continue;
     const Node& n = nodes_[static_cast<std::size_t>(id)];
     if (n.left < 0) {
+      // Distance to the slab, less a round-off margin so that it stays a lower bound.
+      const double s = dot(n.slab_normal, x);
+      const double slab = std::max(n.slab_lo - s, s - n.slab_hi) - 1e-12 * (std::abs(s) + best.distance);
+      if (slab >= best.distance) continue;
       for (int i = n.first; i < n.first + n.count; ++i) test_triangle(order_[static_cast<std::size_t>(i)], x, best);
       continue;
     }
