@@ -47,7 +47,7 @@ void run(MaterialTestOptions options) {
   const material::Material tissue =
       options.case_file.empty()
           ? material::material_preset(options.preset.empty() ? "miller-brain" : options.preset)
-          : material::material_from_case(Case::load(options.case_file, options.overrides));
+          : material::material_from_spec(parse_material_spec(Case::load(options.case_file, options.overrides)));
   options.program.history = kHistories.at(options.history);
   options.program.target = options.target.value_or(default_target(options.program.history));
 

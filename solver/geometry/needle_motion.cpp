@@ -4,10 +4,6 @@
 #include <algorithm>
 #include <numbers>
 
-#include <fmt/format.h>
-
-#include "case/case.hpp"
-
 namespace needlefem {
 
 double NeedleMotion::elapsed(double t) const {
@@ -24,15 +20,10 @@ double NeedleMotion::speed_fraction(double t) const {
   return sigma * sigma * (3.0 - 2.0 * sigma);
 }
 
-NeedleMotion needle_motion_from_case(const Case& input) {
+NeedleMotion needle_motion_from_spec(const MotionSpec& spec) {
   constexpr double kMetresPerMm = 1e-3;
-  const NeedleMotion motion{input.real("motion.insertion_speed_mm_per_s") * kMetresPerMm,
-                            input.real("motion.rotation_speed_deg_per_s") * std::numbers::pi / 180.0,
-                            input.real("motion.duration_s"), input.real("motion.ramp_s")};
-  if (motion.ramp > motion.duration)
-    throw input.error("motion.ramp_s", fmt::format("the start ramp ({:.6g} s) is longer than motion.duration_s ({:.6g} s)",
-                                                   motion.ramp, motion.duration));
-  return motion;
+  return {spec.insertion_speed_mm_per_s * kMetresPerMm, spec.rotation_speed_deg_per_s * std::numbers::pi / 180.0,
+          spec.duration_s, spec.ramp_s};
 }
 
 }  // namespace needlefem

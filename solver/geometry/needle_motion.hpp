@@ -11,9 +11,9 @@
 // travel v t_r/2 the ramp loses (t_r = 0 is the paper's constant-velocity history).
 #pragma once
 
-namespace needlefem {
+#include "case/specs/motion_spec.hpp"
 
-class Case;
+namespace needlefem {
 
 struct NeedleMotion {
   double insertion_speed = 0.0;  // v, m/s
@@ -28,8 +28,7 @@ struct NeedleMotion {
   double speed_fraction(double t) const;
 };
 
-// motion.insertion_speed_mm_per_s, motion.rotation_speed_deg_per_s, motion.duration_s,
-// motion.ramp_s (CaseError if the ramp is longer than the motion).
-NeedleMotion needle_motion_from_case(const Case& input);
+// The case's motion (parse_motion_spec, which checks it) in SI units.
+NeedleMotion needle_motion_from_spec(const MotionSpec& spec);
 
 }  // namespace needlefem

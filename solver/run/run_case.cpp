@@ -317,7 +317,7 @@ class RunPass {
     const TetMesh& mesh = scene_->mesh;
 
     const PetscSession petsc(options_.petsc_options);
-    material_ = std::make_unique<material::Material>(material::material_from_case(c_));
+    material_ = std::make_unique<material::Material>(material::material_from_spec(parse_material_spec(c_)));
     const auto system = mechanics::MechanicsSystem::from_case(c_, mesh);
     if (needle && options_.head_tilt) needle = contact::needle_from_case(c_, nullptr, options_.head_tilt);
     needle_ = NeedleOutput::attach(c_, mesh, *system, material_->instantaneous_shear_modulus(), std::move(needle));

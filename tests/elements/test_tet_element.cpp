@@ -35,7 +35,7 @@ material::Material tissue_material(double bulk_modulus_pa, bool viscous) {
                      "c20_instantaneous_pa = 491\nc11_instantaneous_pa = 120\nc02_instantaneous_pa = 300\n"
                      "bulk_modulus_pa = " + std::to_string(bulk_modulus_pa) + "\n";
   if (viscous) toml += "prony_g = [0.45, 0.365]\nprony_tau_s = [0.5, 50.0]\n";
-  return material::material_from_case(Case::parse(toml, "test"));
+  return material::material_from_spec(parse_material_spec(Case::parse(toml, "test")));
 }
 
 std::vector<double> random_values(std::size_t count, double amplitude, unsigned seed) {
@@ -96,8 +96,8 @@ TEST(TetElement, TangentMatchesFiniteDifferencesElasticAndViscous) {
 }
 
 TEST(TetElement, CorotationalLawTangentMatchesFiniteDifferences) {
-  const auto material = material::material_from_case(
-      Case::parse("[material]\nmodel = \"corotational-linear\"\npoisson_ratio = 0.3\n", "test"));
+  const auto material = material::material_from_spec(parse_material_spec(
+      Case::parse("[material]\nmodel = \"corotational-linear\"\npoisson_ratio = 0.3\n", "test")));
   for (int nodes : {4, 10}) {
     const auto x = element_coordinates(nodes);
     const ElementGeometry geometry = element_geometry(nodes, x.data());

@@ -117,15 +117,15 @@ TEST(NeedleTip, TissueRulesAreReportedUnderTheirTissueKey) {
 }
 
 TEST(NeedleMotion, CaseKeysAndARampLongerThanTheMotionIsACaseError) {
-  const NeedleMotion motion = needle_motion_from_case(Case::parse(
+  const NeedleMotion motion = needle_motion_from_spec(parse_motion_spec(Case::parse(
       "[motion]\ninsertion_speed_mm_per_s = 2\nrotation_speed_deg_per_s = 90\nduration_s = 0.2\nramp_s = 0.01\n",
-      "motion.toml"));
+      "motion.toml")));
   EXPECT_DOUBLE_EQ(motion.insertion_speed, 2e-3);
   EXPECT_DOUBLE_EQ(motion.rotation_speed, kPi / 2);
   EXPECT_DOUBLE_EQ(motion.duration, 0.2);
   EXPECT_DOUBLE_EQ(motion.ramp, 0.01);
   try {
-    needle_motion_from_case(Case::parse("[motion]\nduration_s = 0.1\nramp_s = 0.2\n", "long_ramp.toml"));
+    parse_motion_spec(Case::parse("[motion]\nduration_s = 0.1\nramp_s = 0.2\n", "long_ramp.toml"));
     FAIL() << "no CaseError";
   } catch (const CaseError& e) {
     EXPECT_NE(std::string(e.what()).find("long_ramp.toml"), std::string::npos) << e.what();

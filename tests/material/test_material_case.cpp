@@ -10,7 +10,9 @@
 namespace needlefem::material {
 namespace {
 
-Material from_text(const std::string& toml) { return material_from_case(Case::parse(toml, "test.toml")); }
+Material from_text(const std::string& toml) {
+  return material_from_spec(parse_material_spec(Case::parse(toml, "test.toml")));
+}
 
 std::string error_of(const std::string& toml) {
   try {

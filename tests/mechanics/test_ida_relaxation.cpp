@@ -34,7 +34,8 @@ TEST(MechanicsIda, RampAndHoldRelaxationMatchesPronyRecursion) {
   program.steps = 400;
   program.ramp_s = 0.1;
   program.hold_s = 100.0;
-  const auto reference = material::run_material_point(material::material_from_case(problem.input), program);
+  const auto reference =
+      material::run_material_point(material::material_from_spec(parse_material_spec(problem.input)), program);
   auto reference_at = [&](double t) {
     for (const auto& row : reference)
       if (std::abs(row.time_s - t) < 1e-9 * std::max(1.0, t)) return row.nominal_stress_pa;

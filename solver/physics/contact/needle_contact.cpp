@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "case/case.hpp"
+#include "geometry/needle_motion.hpp"
 #include "geometry/needle_tip.hpp"
 #include "mesh/cad_tip.hpp"
 #include "physics/contact/cad_needle.hpp"
@@ -86,7 +87,7 @@ std::shared_ptr<const Needle> needle_from_case(const Case& input, std::shared_pt
   constexpr double kSharpEdge = 1e-12;  // m: the needle without its edge rounding
   const NeedleTip tip = needle_tip_from_case(input);
   const double edge_radius = input.real("needle.edge_radius_um") * kMPerUm;
-  const NeedleMotion motion = needle_motion_from_case(input);
+  const NeedleMotion motion = needle_motion_from_spec(parse_motion_spec(input));
   switch (tip.kind) {
     case NeedleTip::Kind::Cad: {
       const CadTipTriangulation cad = triangulate_cad_tip(input);

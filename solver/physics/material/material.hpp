@@ -22,9 +22,7 @@
 #include "physics/material/tensor.hpp"
 #include "physics/material/viscoelastic.hpp"
 
-namespace needlefem {
-class Case;
-}
+#include "case/specs/material_spec.hpp"
 
 namespace needlefem::material {
 
@@ -86,8 +84,7 @@ class Material {
 const std::vector<std::string>& material_preset_names();
 // A preset with every other [material] key at its schema default.
 Material material_preset(const std::string& name);
-// The material of a case's [material] table (schema keys material.*). Throws CaseError naming
-// the key for inconsistent input (e.g. coefficients given with a named preset).
-Material material_from_case(const Case& input);
+// The material of a case's [material] table (parse_material_spec, which checks it).
+Material material_from_spec(const MaterialSpec& spec);
 
 }  // namespace needlefem::material

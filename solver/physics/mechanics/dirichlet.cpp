@@ -138,7 +138,7 @@ DirichletConditions brain_tip_conditions(const Case& input, const TetMesh& mesh,
   ConditionBuilder builder(mesh, map);
   builder.constrain_surface("fixed", {0, 1, 2}, builder.add_field(kZeroField));
   if (input.text("contact.mode") != "tied") return builder.finish();
-  const NeedleMotion motion = needle_motion_from_case(input);
+  const NeedleMotion motion = needle_motion_from_spec(parse_motion_spec(input));
   builder.constrain_surface("cavity", {0, 1, 2}, builder.add_field([motion](const Point3& X, double t) {
                               const double elapsed = motion.elapsed(t);
                               const double angle = motion.rotation_speed * elapsed;

@@ -151,7 +151,7 @@ MechanicsSystem::~MechanicsSystem() {
 
 std::unique_ptr<MechanicsSystem> MechanicsSystem::from_case(const Case& input, const TetMesh& mesh) {
   const DofMap map = tissue_dof_map(mesh);
-  return std::make_unique<MechanicsSystem>(mesh, material::material_from_case(input), formulation_from_case(input),
+  return std::make_unique<MechanicsSystem>(mesh, material::material_from_spec(parse_material_spec(input)), formulation_from_case(input),
                                            scene_conditions(input, mesh, map),
                                            newton_matrix_options_from_case(input));
 }

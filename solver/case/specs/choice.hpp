@@ -1,0 +1,22 @@
+// The enumerator a choice key's value names, for the spec parsers (case/specs/*.cpp): `names`
+// pairs each of the schema's choices with its enumerator.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+#include "case/case.hpp"
+
+namespace needlefem {
+
+template <class Names>
+auto parse_choice(const Case& c, const std::string& key, const Names& names) {
+  const std::string value = c.text(key);
+  for (const auto& [name, enumerator] : names)
+    if (name == value) return enumerator;
+  // The schema refuses any value outside its choices: a choice missing here is a programming error.
+  throw std::logic_error("case key '" + key + "': the choice '" + value + "' has no enumerator");
+}
+
+}  // namespace needlefem
