@@ -47,7 +47,7 @@ class Checker {
   explicit Checker(std::string origin) : origin_(std::move(origin)) {}
 
   [[noreturn]] void fail(const std::string& key, const std::string& reason) const {
-    throw CaseError(fmt::format("{}: key '{}': {}", origin_, key, reason));
+    throw case_error(origin_, key, reason);
   }
 
   const KeySpec& spec_of(const std::string& key) const {
@@ -323,8 +323,12 @@ bool states_motion_length(const std::string& key) {
   return std::find(keys.begin(), keys.end(), key) != keys.end();
 }
 
+CaseError case_error(const std::string& origin, const std::string& key, const std::string& reason) {
+  return CaseError(fmt::format("{}: key '{}': {}", origin, key, reason));
+}
+
 CaseError Case::error(const std::string& key, const std::string& reason) const {
-  return CaseError(fmt::format("{}: key '{}': {}", origin_, key, reason));
+  return case_error(origin_, key, reason);
 }
 
 std::string Case::to_toml() const {

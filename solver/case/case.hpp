@@ -20,6 +20,10 @@ class CaseError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A CaseError "ORIGIN: key 'KEY': REASON": Case::error's message, for the rules checked where a
+// spec's values are used (case/specs/), which know the case's origin but not the Case.
+CaseError case_error(const std::string& origin, const std::string& key, const std::string& reason);
+
 // The text of an input file the user named (`what`: "case file", "sweep file"). Refuses with a
 // CaseError "FILE: REASON" a path that cannot be opened, a directory, or a file holding nothing
 // but white space ("empty case file"): none of them is a case, and running the defaults instead

@@ -180,7 +180,8 @@ std::string hinge_outputs(nlohmann::json& summary, const RunOptions& options, co
 }  // namespace
 
 bool head_turns_in_tissue(const Case& c) {
-  return contact::needle_contact_enabled(c) && needle_tip_from_case(c).kind == NeedleTip::Kind::Compliant;
+  return contact::needle_contact_enabled(parse_scene_kind(c), parse_contact_spec(c).mode) &&
+         needle_tip_from_case(c).kind == NeedleTip::Kind::Compliant;
 }
 
 nlohmann::json run_hinged_case(const Case& c, const RunOptions& options, const RunPass& run_pass) {

@@ -23,7 +23,7 @@ std::unique_ptr<MeshSceneLoads> MeshSceneLoads::attach(const Case& input, const 
 MeshSceneLoads::MeshSceneLoads(const Case& input, const TetMesh& mesh, mechanics::MechanicsSystem& system,
                                double reference_modulus)
     : system_(system),
-      history_(mechanics::LoadHistory::from_case(input)),
+      history_(mechanics::LoadHistory::from_spec(parse_loading_spec(input))),
       pressure_pa_(input.real("pressure.value_pa")),
       pressure_(!input.texts("groups.pressure").empty()),
       contact_(contact::scene_obstacle_contact(input, mesh, reference_modulus)) {

@@ -11,6 +11,7 @@
 
 #include "case/case.hpp"
 #include "integration/petsc_arrays.hpp"
+#include "physics/mechanics/load_history.hpp"
 #include "physics/mechanics/mechanics_system.hpp"
 
 namespace needlefem::run {
@@ -39,7 +40,11 @@ std::unique_ptr<NeedleOutput> NeedleOutput::attach(const Case& input, const TetM
 
 NeedleOutput::NeedleOutput(const Case& input, const TetMesh& mesh, mechanics::MechanicsSystem& system,
                            double reference_modulus, std::shared_ptr<const contact::Needle> needle)
-    : system_(system), contact_(input, mesh, reference_modulus, std::move(needle)), initial_gap_(contact_.initial_gap()) {
+    : system_(system),
+      contact_(contact::contact_parameters_from_spec(parse_contact_spec(input), reference_modulus,
+                                                     mechanics::history_end(parse_loading_spec(input))),
+               mesh, std::move(needle)),
+      initial_gap_(contact_.initial_gap()) {
   system.add_surface_load(contact_.surface_load());
   if (!input.flag("needle.deflection_check")) return;
   if (contact_.hinged_needle())

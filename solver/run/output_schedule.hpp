@@ -10,7 +10,7 @@ class Case;
 
 namespace needlefem::run {
 
-// Ascending, starting at 0 and ending at mechanics::history_end(c). Throws CaseError (output.interval_s)
+// Ascending, starting at 0 and ending at mechanics::history_end. Throws CaseError (output.interval_s)
 // for more than 1e4 output times.
 std::vector<double> output_times(const Case& c);
 

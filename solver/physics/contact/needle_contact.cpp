@@ -35,7 +35,7 @@ double centroid_weight(int nodes_per_face, int a) {
 // nodes may sit on chords), so they are checked against the sharp needle (the rounding of the
 // contact needle's edges is not meshed) at t = 0; a vertex off it by more than a thousandth of
 // the radius stops the run, naming the largest offset and where.
-void require_cavity_on_needle(const Case& input, const TetMesh& mesh, const RigidObstacle& sharp) {
+void require_cavity_on_needle(const NeedleContactSpec& spec, const TetMesh& mesh, const RigidObstacle& sharp) {
   constexpr double kMmPerM = 1e3;
   const auto cavity = mesh.surface_faces.find(kCavity);
   if (cavity == mesh.surface_faces.end()) return;  // NeedleContact names the missing group
@@ -54,29 +54,29 @@ void require_cavity_on_needle(const Case& input, const TetMesh& mesh, const Rigi
     if (std::abs(gap) > std::abs(largest)) largest = gap, where = X;
   });
   if (std::abs(largest) > tolerance)
-    throw input.error("scene.mesh_file",
-                      fmt::format("the cavity does not fit the needle of the needle.* keys: its vertex at ({:.3g}, "
-                                  "{:.3g}, {:.3g}) mm lies {:.3g} mm {} the needle's surface (tolerance {:.2g} mm); "
-                                  "mesh the scene from the same needle keys",
-                                  where[0] * kMmPerM, where[1] * kMmPerM, where[2] * kMmPerM,
-                                  std::abs(largest) * kMmPerM, largest > 0 ? "outside" : "inside",
-                                  tolerance * kMmPerM));
+    throw case_error(spec.origin, "scene.mesh_file",
+                     fmt::format("the cavity does not fit the needle of the needle.* keys: its vertex at ({:.3g}, "
+                                 "{:.3g}, {:.3g}) mm lies {:.3g} mm {} the needle's surface (tolerance {:.2g} mm); "
+                                 "mesh the scene from the same needle keys",
+                                 where[0] * kMmPerM, where[1] * kMmPerM, where[2] * kMmPerM,
+                                 std::abs(largest) * kMmPerM, largest > 0 ? "outside" : "inside",
+                                 tolerance * kMmPerM));
 }
 
 }  // namespace
 
-bool needle_contact_enabled(const Case& input) {
-  return input.text("scene.kind") == "brain-tip" && input.text("contact.mode") == "frictional";
+bool needle_contact_enabled(SceneKind scene_kind, ContactMode mode) {
+  return scene_kind == SceneKind::brain_tip && mode == ContactMode::frictional;
 }
 
 namespace {
 
-std::shared_ptr<const CadNeedleShape> cad_needle_shape(const Case& input, const CadTipTriangulation& cad,
-                                                       double edge_radius) {
+std::shared_ptr<const CadNeedleShape> cad_needle_shape(const NeedleContactSpec& spec,
+                                                       const CadTipTriangulation& cad, double edge_radius) {
   try {
     return std::make_shared<CadNeedleShape>(TriangleSoup{cad.vertices, cad.triangles}, edge_radius);
   } catch (const std::invalid_argument& e) {
-    throw input.error("needle.cad_file", fmt::format("'{}': {}", input.path("needle.cad_file").string(), e.what()));
+    throw case_error(spec.origin, "needle.cad_file", fmt::format("'{}': {}", spec.cad_file.string(), e.what()));
   }
 }
 
@@ -86,13 +86,14 @@ std::shared_ptr<const Needle> needle_from_case(const Case& input, std::shared_pt
                                                std::shared_ptr<const HeadTilt> tilt) {
   constexpr double kSharpEdge = 1e-12;  // m: the needle without its edge rounding
   const NeedleTip tip = needle_tip_from_case(input);
-  const double edge_radius = input.real("needle.edge_radius_um") * kMPerUm;
+  const NeedleContactSpec spec = parse_needle_contact_spec(input);
+  const double edge_radius = spec.edge_radius_um * kMPerUm;
   const NeedleMotion motion = needle_motion_from_spec(parse_motion_spec(input));
   switch (tip.kind) {
     case NeedleTip::Kind::Cad: {
       const CadTipTriangulation cad = triangulate_cad_tip(input);
-      if (sharp) *sharp = std::make_shared<RigidNeedle>(cad_needle_shape(input, cad, 0.0), motion);
-      return std::make_shared<RigidNeedle>(cad_needle_shape(input, cad, edge_radius), motion);
+      if (sharp) *sharp = std::make_shared<RigidNeedle>(cad_needle_shape(spec, cad, 0.0), motion);
+      return std::make_shared<RigidNeedle>(cad_needle_shape(spec, cad, edge_radius), motion);
     }
     case NeedleTip::Kind::Compliant:
       if (sharp) *sharp = std::make_shared<HingedNeedle>(tip.compliant, motion, kSharpEdge, tilt);
@@ -106,11 +107,12 @@ std::shared_ptr<const Needle> needle_from_case(const Case& input, std::shared_pt
 
 RoundedCavity round_cavity_to_needle(const Case& input, TetMesh& mesh) {
   constexpr double kRoundingMoveLimit = 4.0;  // edge radii
-  if (!needle_contact_enabled(input)) return {};
-  const bool user_mesh = !input.path("scene.mesh_file").empty();
+  if (!needle_contact_enabled(parse_scene_kind(input), parse_contact_spec(input).mode)) return {};
+  const NeedleContactSpec spec = parse_needle_contact_spec(input);
+  const bool user_mesh = !spec.scene_mesh_file.empty();
   std::shared_ptr<const Needle> sharp;  // without the edge rounding, as the cavity was meshed
   RoundedCavity rounded{needle_from_case(input, user_mesh ? &sharp : nullptr), {}};
-  if (user_mesh) require_cavity_on_needle(input, mesh, *sharp);
+  if (user_mesh) require_cavity_on_needle(spec, mesh, *sharp);
   rounded.rounding = round_cavity(mesh, [&](const Point3& X) {
     const ObstacleProjection p = rounded.needle->project(X, 0.0);
     return Point3{X[0] - p.gap * p.normal[0], X[1] - p.gap * p.normal[1], X[2] - p.gap * p.normal[2]};
@@ -121,22 +123,21 @@ RoundedCavity round_cavity_to_needle(const Case& input, TetMesh& mesh) {
   // the Quincke's lancet point left sharp 6.7 ρ.
   // The case's radius, not the needle's: a fully rounded tip has no edges to round (0) but its
   // nodes still move by round-off.
-  const double edge_radius = input.real("needle.edge_radius_um") * kMPerUm;
+  const double edge_radius = spec.edge_radius_um * kMPerUm;
   if (rounded.rounding.largest_move_m > kRoundingMoveLimit * edge_radius)
-    throw input.error("needle.edge_radius_um",
-                      fmt::format("rounding the cavity to the needle's edges moved it by up to {:.3g} mm, more than "
-                                  "{} edge radii: the tip has a point sharper than this radius rounds, so the needle in "
-                                  "contact would not be its shape; blunt the point or lower the radius",
-                                  rounded.rounding.largest_move_m * 1e3, kRoundingMoveLimit));
+    throw case_error(spec.origin, "needle.edge_radius_um",
+                     fmt::format("rounding the cavity to the needle's edges moved it by up to {:.3g} mm, more than "
+                                 "{} edge radii: the tip has a point sharper than this radius rounds, so the needle in "
+                                 "contact would not be its shape; blunt the point or lower the radius",
+                                 rounded.rounding.largest_move_m * 1e3, kRoundingMoveLimit));
   return rounded;
 }
 
-NeedleContact::NeedleContact(const Case& input, const TetMesh& mesh, double reference_modulus,
+NeedleContact::NeedleContact(ContactParameters parameters, const TetMesh& mesh,
                              std::shared_ptr<const Needle> needle)
     : mesh_(mesh), needle_(std::move(needle)) {
-  ContactParameters parameters = contact_parameters_from_case(input, reference_modulus);
   parameters.reference_gap_offset = true;  // the cavity is meshed from the needle's shape
-  smoothing_pressure_ = parameters.penalty_smoothing * reference_modulus;
+  smoothing_pressure_ = parameters.penalty_smoothing * parameters.reference_modulus;
   contact_ = std::make_shared<PenaltyContact>(mesh, kCavity, needle_, parameters);
   std::map<int, std::pair<double, int>> penalty_sum;  // node -> (sum of face penalties, faces)
   for (std::size_t f = 0; f < contact_->face_count(); ++f)

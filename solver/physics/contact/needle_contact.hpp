@@ -32,6 +32,8 @@
 #include <memory>
 #include <vector>
 
+#include "case/specs/contact_spec.hpp"
+#include "case/specs/scene_kind.hpp"
 #include "model/cavity_rounding.hpp"
 #include "model/tet_mesh.hpp"
 #include "physics/contact/hinged_needle.hpp"
@@ -48,13 +50,14 @@ namespace needlefem::contact {
 // The needle of the case's [needle] and [motion]: the analytic bevel (needle_obstacle.hpp), a
 // CAD tip (needle.kind = "cad", cad_needle.hpp), or the compliant tip, its head turned by `tilt`
 // (needle.kind = "compliant", hinged_needle.hpp; null: not turned). Throws CaseError for a CAD
-// file that breaks a rule (mesh/cad_tip.hpp). `sharp` (optional): also the same needle without
-// its edge rounding (a CAD tip's from the same triangulation).
+// file that breaks a rule (mesh/cad_tip.hpp) or a motion whose ramp is too long. `sharp`
+// (optional): also the same needle without its edge rounding (a CAD tip's from the same
+// triangulation). Takes the Case for the tip's shape (needle_tip_from_case, triangulate_cad_tip).
 std::shared_ptr<const Needle> needle_from_case(const Case& input, std::shared_ptr<const Needle>* sharp = nullptr,
                                                std::shared_ptr<const HeadTilt> tilt = nullptr);
 
 // True for the brain-tip scene with contact.mode = "frictional".
-bool needle_contact_enabled(const Case& input);
+bool needle_contact_enabled(SceneKind scene_kind, ContactMode mode);
 
 // With needle contact, moves the mesh's cavity onto the rounded needle of the case at t = 0
 // (model/cavity_rounding.hpp), a user's mesh (scene.mesh_file) once its cavity has been checked
@@ -62,7 +65,7 @@ bool needle_contact_enabled(const Case& input);
 // the mesh as it is; a CaseError naming needle.edge_radius_um when the rounding moves the cavity
 // by more than four edge radii (a point sharper than the radius can round). Returns what moved
 // and the needle (null without needle contact), to be the needle in contact too: a CAD tip's
-// triangulation and core are then built once.
+// triangulation and core are then built once. Takes the Case for needle_from_case.
 struct RoundedCavity {
   std::shared_ptr<const Needle> needle;
   CavityRounding rounding;
@@ -83,9 +86,10 @@ struct GapRange {
 
 class NeedleContact {
  public:
-  // `needle` (needle_from_case: the case's [needle] and [motion]), the cavity of `mesh` (which
-  // must outlive this), [contact] parameters; μ₀ = the tissue's instantaneous shear modulus.
-  NeedleContact(const Case& input, const TetMesh& mesh, double reference_modulus, std::shared_ptr<const Needle> needle);
+  // `needle` (needle_from_case: the case's [needle] and [motion]) pressed into the cavity of `mesh`
+  // (which must outlive this) with the [contact] law (contact_parameters_from_spec), its gaps
+  // measured from those at t = 0.
+  NeedleContact(ContactParameters parameters, const TetMesh& mesh, std::shared_ptr<const Needle> needle);
 
   std::shared_ptr<mechanics::SurfaceLoad> surface_load() const { return contact_; }
   const Needle& needle() const { return *needle_; }

@@ -7,9 +7,7 @@
 
 #include <fmt/format.h>
 
-#include "case/case.hpp"
 #include "physics/elements/triangle_face.hpp"
-#include "physics/mechanics/load_history.hpp"
 
 namespace needlefem::contact {
 
@@ -177,22 +175,20 @@ NormalPressure normal_pressure(double depth, double penalty, double smoothing_de
   return {0.5 * penalty * depth * depth / smoothing_depth, penalty * depth / smoothing_depth};
 }
 
-ContactParameters contact_parameters_from_case(const Case& input, double reference_modulus) {
+ContactParameters contact_parameters_from_spec(const ContactSpec& spec, double reference_modulus, double history_end_s) {
   ContactParameters p;
-  p.friction_coefficient = input.real("contact.friction_coefficient");
-  p.penalty_factor = input.real("contact.penalty_factor");
-  p.penalty_smoothing = input.real("contact.penalty_smoothing");
-  p.elastic_slip = input.real("contact.elastic_slip");
-  p.rate_strengthening = input.real("contact.rate_strengthening_s_per_m");
-  p.slip_velocity_regularisation = input.real("contact.slip_velocity_regularisation_mm_per_s") * kMetresPerMm;
+  p.friction_coefficient = spec.friction_coefficient;
+  p.penalty_factor = spec.penalty_factor;
+  p.penalty_smoothing = spec.penalty_smoothing;
+  p.elastic_slip = spec.elastic_slip;
+  p.rate_strengthening = spec.rate_strengthening_s_per_m;
+  p.slip_velocity_regularisation = spec.slip_velocity_regularisation_mm_per_s * kMetresPerMm;
   p.reference_modulus = reference_modulus;
-  p.face_size_scale = std::ldexp(1.0, static_cast<int>(input.integer("mesh.refinement_level")));
-  p.friction_tangent =
-      input.text("contact.friction_tangent") == "consistent" ? FrictionTangent::consistent : FrictionTangent::secant;
-  p.friction_law = input.text("contact.friction_law") == "velocity" ? FrictionLaw::velocity : FrictionLaw::return_map;
-  p.normal_enforcement = input.text("contact.normal_enforcement") == "penalty" ? NormalEnforcement::penalty
-                                                                                : NormalEnforcement::augmented;
-  p.multiplier_update_interval = mechanics::history_end(input) / kMultiplierUpdatesPerMotion;
+  p.face_size_scale = std::ldexp(1.0, static_cast<int>(spec.mesh_refinement_level));
+  p.friction_tangent = spec.friction_tangent;
+  p.friction_law = spec.friction_law;
+  p.normal_enforcement = spec.normal_enforcement;
+  p.multiplier_update_interval = history_end_s / kMultiplierUpdatesPerMotion;
   return p;
 }
 

@@ -157,19 +157,16 @@
 #include <string>
 #include <vector>
 
+#include "case/specs/contact_spec.hpp"
 #include "model/tet_mesh.hpp"
 #include "physics/contact/rigid_obstacle.hpp"
 #include "physics/mechanics/surface_load.hpp"
 
-namespace needlefem {
-class Case;
-}
-
 namespace needlefem::contact {
 
-enum class FrictionTangent { secant, consistent };
-enum class FrictionLaw { return_map, velocity };
-enum class NormalEnforcement { penalty, augmented };
+using needlefem::FrictionLaw;
+using needlefem::FrictionTangent;
+using needlefem::NormalEnforcement;
 
 struct ContactParameters {
   double friction_coefficient = 0.5;
@@ -207,8 +204,10 @@ struct NormalPressure {
 };
 NormalPressure normal_pressure(double depth, double penalty, double smoothing_depth);
 
-// [contact] keys; μ₀ from the caller (the material's instantaneous shear modulus).
-ContactParameters contact_parameters_from_case(const Case& input, double reference_modulus);
+// The case's [contact] law (parse_contact_spec) in SI units; μ₀ from the caller (the material's
+// instantaneous shear modulus), the multiplier update interval from the length of the scene's
+// history (mechanics::history_end).
+ContactParameters contact_parameters_from_spec(const ContactSpec& spec, double reference_modulus, double history_end_s);
 
 // Residual and Newton-matrix terms of one face: 3m values and 3m x 3m (row-major), m face nodes.
 struct FaceTerms {

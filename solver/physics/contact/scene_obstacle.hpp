@@ -23,7 +23,8 @@ namespace needlefem::contact {
 
 // The contact of the case's obstacle with obstacle.group of `mesh` (which must outlive it), the
 // penalty scaled by the tissue's instantaneous shear modulus μ₀; nullptr for obstacle.kind =
-// "none". Throws CaseError for a zero plane normal.
+// "none". Throws CaseError for a zero plane normal. Takes the Case for the needle obstacle's tip
+// (needle_from_case).
 std::shared_ptr<PenaltyContact> scene_obstacle_contact(const Case& input, const TetMesh& mesh,
                                                        double reference_modulus);
 

@@ -164,7 +164,7 @@ DirichletConditions mesh_scene_conditions(const Case& input, const TetMesh& mesh
   const std::vector<double> gradient = input.reals("displacement.gradient");
   std::array<double, 9> displacement_gradient{};  // F - I
   for (int n = 0; n < 9; ++n) displacement_gradient[n] = gradient[n] - (n % 4 == 0 ? 1.0 : 0.0);
-  const int displaced = builder.add_field([displacement_gradient, history = LoadHistory::from_case(input)](
+  const int displaced = builder.add_field([displacement_gradient, history = LoadHistory::from_spec(parse_loading_spec(input))](
                                               const Point3& X, double t) {
     const double s = history.factor(t);
     Point3 u = history.translation(t);

@@ -12,6 +12,7 @@ namespace needlefem::mechanics {
 namespace {
 
 constexpr double kMetresPerMm = 1e-3;
+constexpr const char* kNeedsHistoryTimes = "needs loading.history_time_s, the times of its entries";
 
 // Piecewise-linear interpolation of values[k] at times[k], held beyond both ends.
 template <class T>
@@ -36,54 +37,53 @@ double ramp_then_hold(double t, double ramp_s) {
   return std::clamp(t / ramp_s, 0.0, 1.0);
 }
 
-double history_end(const Case& input) {
-  const std::string kind = input.text("scene.kind");
-  if (kind == "brain-tip") return input.real("motion.duration_s");
-  const double loading = kind == "mesh" && input.has("loading.history_time_s")
-                             ? input.reals("loading.history_time_s").back()
-                             : input.real("loading.ramp_s");
-  return loading + input.real("loading.hold_s");
+double history_end(const LoadingSpec& spec) {
+  if (spec.scene_kind == SceneKind::brain_tip) return spec.motion_duration_s;
+  const double loading =
+      spec.scene_kind == SceneKind::mesh && spec.history_time_s ? spec.history_time_s->back() : spec.ramp_s;
+  return loading + spec.hold_s;
 }
 
-LoadHistory LoadHistory::from_case(const Case& input) {
-  LoadHistory h;
-  const std::vector<double> final_translation = input.reals("displacement.translation_mm");
-  const auto scaled_translation = [&](double s) {
-    return Point3{s * final_translation[0] * kMetresPerMm, s * final_translation[1] * kMetresPerMm,
-                  s * final_translation[2] * kMetresPerMm};
+LoadHistory LoadHistory::from_spec(const LoadingSpec& spec) {
+  const auto error = [&](const std::string& key, const std::string& reason) {
+    return case_error(spec.origin, key, reason);
   };
-  if (!input.has("loading.history_time_s")) {
-    for (const char* key : {"loading.history_factor", "displacement.translation_history_mm"})
-      if (input.has(key)) throw input.error(key, "needs loading.history_time_s, the times of its entries");
-    const double ramp_s = input.real("loading.ramp_s");
-    h.times_ = ramp_s > 0.0 ? std::vector<double>{0.0, ramp_s} : std::vector<double>{0.0};
-    h.factors_ = ramp_s > 0.0 ? std::vector<double>{0.0, 1.0} : std::vector<double>{1.0};
+  LoadHistory h;
+  const auto scaled_translation = [&](double s) {
+    return Point3{s * spec.translation_mm[0] * kMetresPerMm, s * spec.translation_mm[1] * kMetresPerMm,
+                  s * spec.translation_mm[2] * kMetresPerMm};
+  };
+  if (!spec.history_time_s) {
+    if (spec.history_factor) throw error("loading.history_factor", kNeedsHistoryTimes);
+    if (spec.translation_history_mm) throw error("displacement.translation_history_mm", kNeedsHistoryTimes);
+    h.times_ = spec.ramp_s > 0.0 ? std::vector<double>{0.0, spec.ramp_s} : std::vector<double>{0.0};
+    h.factors_ = spec.ramp_s > 0.0 ? std::vector<double>{0.0, 1.0} : std::vector<double>{1.0};
     for (double s : h.factors_) h.translations_.push_back(scaled_translation(s));
     return h;
   }
-  h.times_ = input.reals("loading.history_time_s");
-  if (h.times_.front() != 0.0) throw input.error("loading.history_time_s", "must start at 0");
+  h.times_ = *spec.history_time_s;
+  if (h.times_.front() != 0.0) throw error("loading.history_time_s", "must start at 0");
   for (std::size_t k = 1; k < h.times_.size(); ++k)
     if (!(h.times_[k] > h.times_[k - 1]))
-      throw input.error("loading.history_time_s",
-                        fmt::format("must increase strictly ({} follows {})", h.times_[k], h.times_[k - 1]));
+      throw error("loading.history_time_s",
+                  fmt::format("must increase strictly ({} follows {})", h.times_[k], h.times_[k - 1]));
   const std::size_t n = h.times_.size();
-  if (!input.has("loading.history_factor")) throw input.error("loading.history_factor", "required with loading.history_time_s");
-  h.factors_ = input.reals("loading.history_factor");
+  if (!spec.history_factor) throw error("loading.history_factor", "required with loading.history_time_s");
+  h.factors_ = *spec.history_factor;
   if (h.factors_.size() != n)
-    throw input.error("loading.history_factor",
-                      fmt::format("has {} entries but loading.history_time_s has {}", h.factors_.size(), n));
-  if (!input.has("displacement.translation_history_mm")) {
+    throw error("loading.history_factor",
+                fmt::format("has {} entries but loading.history_time_s has {}", h.factors_.size(), n));
+  if (!spec.translation_history_mm) {
     for (double s : h.factors_) h.translations_.push_back(scaled_translation(s));
     return h;
   }
-  if (input.given("displacement.translation_mm"))
-    throw input.error("displacement.translation_history_mm", "give either it or displacement.translation_mm, not both");
-  const std::vector<double> table = input.reals("displacement.translation_history_mm");
+  if (spec.translation_mm_given)
+    throw error("displacement.translation_history_mm", "give either it or displacement.translation_mm, not both");
+  const std::vector<double>& table = *spec.translation_history_mm;
   if (table.size() != 3 * n)
-    throw input.error("displacement.translation_history_mm",
-                      fmt::format("has {} entries; loading.history_time_s has {} times, so it needs {} (x, y, z per "
-                                  "time)", table.size(), n, 3 * n));
+    throw error("displacement.translation_history_mm",
+                fmt::format("has {} entries; loading.history_time_s has {} times, so it needs {} (x, y, z per "
+                            "time)", table.size(), n, 3 * n));
   for (std::size_t k = 0; k < n; ++k)
     h.translations_.push_back(
         {table[3 * k] * kMetresPerMm, table[3 * k + 1] * kMetresPerMm, table[3 * k + 2] * kMetresPerMm});

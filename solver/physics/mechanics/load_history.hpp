@@ -14,11 +14,8 @@
 
 #include <vector>
 
+#include "case/specs/loading_spec.hpp"
 #include "model/tet_mesh.hpp"
-
-namespace needlefem {
-class Case;
-}
 
 namespace needlefem::mechanics {
 
@@ -26,13 +23,14 @@ namespace needlefem::mechanics {
 double ramp_then_hold(double t, double ramp_s);
 
 // How long the case's scene is loaded (s): its output history ends there.
-double history_end(const Case& input);
+double history_end(const LoadingSpec& spec);
 
 class LoadHistory {
  public:
   // Throws CaseError for a history table that is not increasing from 0 or whose lists differ
-  // in length.
-  static LoadHistory from_case(const Case& input);
+  // in length, or a translation history given without history times or with
+  // displacement.translation_mm.
+  static LoadHistory from_spec(const LoadingSpec& spec);
 
   double factor(double t) const;
   Point3 translation(double t) const;  // metres
