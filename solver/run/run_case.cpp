@@ -317,8 +317,10 @@ class RunPass {
     const TetMesh& mesh = scene_->mesh;
 
     const PetscSession petsc(options_.petsc_options);
-    material_ = std::make_unique<material::Material>(material::material_from_spec(parse_material_spec(c_)));
-    const auto system = mechanics::MechanicsSystem::from_case(c_, mesh);
+    const MechanicsSpec mechanics_spec = parse_mechanics_spec(c_);
+    material_ = std::make_unique<material::Material>(material::material_from_spec(mechanics_spec.material));
+    const auto system =
+        mechanics::MechanicsSystem::from_spec(mechanics_spec, mesh, newton_matrix_options_from_case(c_));
     if (needle && options_.head_tilt) needle = contact::needle_from_case(c_, nullptr, options_.head_tilt);
     needle_ = NeedleOutput::attach(c_, mesh, *system, material_->instantaneous_shear_modulus(), std::move(needle));
     scene_loads_ = MeshSceneLoads::attach(c_, mesh, *system, material_->instantaneous_shear_modulus());
@@ -349,7 +351,9 @@ class RunPass {
     prepare_integrator(integrator, *system);
     last_report_ = Clock::now();
     double integration_s = 0.0;
-    const double inversion_s = (c_.text("scene.kind") == "block" ? mechanics::block_inversion_time_s(c_) : std::nullopt)
+    const double inversion_s = (mechanics_spec.boundary.scene_kind == SceneKind::block
+                                    ? mechanics::block_inversion_time_s(mechanics_spec.boundary.block)
+                                    : std::nullopt)
                                    .value_or(std::numeric_limits<double>::infinity());
     for (const double t : times_) {
       stop_if_asked(integrator.time());

@@ -7,6 +7,8 @@
 
 #include <unistd.h>
 
+#include "integration/case_options.hpp"
+
 namespace needlefem::mechanics::testing {
 
 namespace {
@@ -43,7 +45,8 @@ double displacement_norm(const MechanicsSystem& system, Vec v) {
 Problem::Problem(const std::string& toml, const std::vector<std::string>& overrides)
     : input(Case::parse(toml, "test", overrides)),
       scene(meshed(input)),
-      system(MechanicsSystem::from_case(input, scene.mesh)) {
+      system(MechanicsSystem::from_spec(parse_mechanics_spec(input), scene.mesh,
+                                        newton_matrix_options_from_case(input))) {
   VecCreateSeq(PETSC_COMM_SELF, system->local_size(), &y);
   VecDuplicate(y, &ydot);
   system->initial_state(0.0, y, ydot);

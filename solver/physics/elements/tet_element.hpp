@@ -54,12 +54,13 @@
 #include <array>
 #include <vector>
 
+#include "case/specs/mechanics_spec.hpp"
 #include "model/tet_geometry.hpp"
 #include "physics/material/material.hpp"
 
 namespace needlefem::elements {
 
-enum class Formulation { displacement, mean_dilatation };
+using Formulation = ElementFormulation;  // element.formulation (case/specs/mechanics_spec.hpp)
 
 using material::kVoigt;
 

@@ -48,8 +48,12 @@ class ConditionBuilder {
   std::map<int, PrescribedDof> by_dof_;
 };
 
-// The block's faces, two per axis (face f is normal to axis f / 2).
-const std::array<std::string, 6> kBlockFaces{"x_min", "x_max", "y_min", "y_max", "z_min", "z_max"};
+// F - I of a row-major F.
+std::array<double, 9> minus_identity(const std::array<double, 9>& F) {
+  std::array<double, 9> displacement_gradient{};
+  for (int n = 0; n < 9; ++n) displacement_gradient[n] = F[n] - (n % 4 == 0 ? 1.0 : 0.0);
+  return displacement_gradient;
+}
 
 const DisplacementField kZeroField = [](const Point3&, double) { return Point3{0.0, 0.0, 0.0}; };
 
@@ -69,14 +73,13 @@ std::optional<int> normal_axis(const TetMesh& mesh, const std::string& surface) 
 
 }  // namespace
 
-std::optional<double> block_inversion_time_s(const Case& input) {
-  const std::vector<double> F = input.reals("block.applied_gradient");
+std::optional<double> block_inversion_time_s(const BlockSpec& block) {
+  const std::array<double, 9>& F = block.applied_gradient;
   bool full = false;                     // a "displacement" face imposes all of F
   std::array<bool, 3> normal{};          // a "normal-displacement" face imposes F's diagonal on its axis
   for (int f = 0; f < 6; ++f) {
-    const std::string condition = input.text("block." + kBlockFaces[f]);
-    full = full || condition == "displacement";
-    if (condition == "normal-displacement") normal[f / 2] = true;
+    full = full || block.faces[f] == FaceCondition::displacement;
+    if (block.faces[f] == FaceCondition::normal_displacement) normal[f / 2] = true;
   }
   // The largest value that must stay positive: det F(s) when all of F is imposed, else the
   // stretch 1 + s (F_ii - 1) of each axis whose faces are pushed (at 0 a face meets its opposite).
@@ -104,15 +107,12 @@ std::optional<double> block_inversion_time_s(const Case& input) {
     const double mid = 0.5 * (below + above);
     (inverted(mid) ? above : below) = mid;
   }
-  const double ramp_s = input.real("loading.ramp_s");
-  return ramp_s > 0.0 ? above * ramp_s : 0.0;
+  return block.ramp_s > 0.0 ? above * block.ramp_s : 0.0;
 }
 
-DirichletConditions block_conditions(const Case& input, const TetMesh& mesh, const DofMap& map) {
-  const std::vector<double> gradient = input.reals("block.applied_gradient");
-  std::array<double, 9> displacement_gradient{};  // F - I
-  for (int n = 0; n < 9; ++n) displacement_gradient[n] = gradient[n] - (n % 4 == 0 ? 1.0 : 0.0);
-  const double ramp_s = input.real("loading.ramp_s");
+DirichletConditions block_conditions(const BlockSpec& block, const TetMesh& mesh, const DofMap& map) {
+  const std::array<double, 9> displacement_gradient = minus_identity(block.applied_gradient);
+  const double ramp_s = block.ramp_s;
 
   ConditionBuilder builder(mesh, map);
   const int zero = builder.add_field(kZeroField);
@@ -124,21 +124,22 @@ DirichletConditions block_conditions(const Case& input, const TetMesh& mesh, con
     return u;
   });
   for (int f = 0; f < 6; ++f) {
-    const std::string condition = input.text("block." + kBlockFaces[f]);
+    const std::string& face = block_face_names()[f];
     const int axis = f / 2;
-    if (condition == "fixed") builder.constrain_surface(kBlockFaces[f], {0, 1, 2}, zero);
-    if (condition == "roller") builder.constrain_surface(kBlockFaces[f], {axis}, zero);
-    if (condition == "normal-displacement") builder.constrain_surface(kBlockFaces[f], {axis}, affine);
-    if (condition == "displacement") builder.constrain_surface(kBlockFaces[f], {0, 1, 2}, affine);
+    if (block.faces[f] == FaceCondition::fixed) builder.constrain_surface(face, {0, 1, 2}, zero);
+    if (block.faces[f] == FaceCondition::roller) builder.constrain_surface(face, {axis}, zero);
+    if (block.faces[f] == FaceCondition::normal_displacement) builder.constrain_surface(face, {axis}, affine);
+    if (block.faces[f] == FaceCondition::displacement) builder.constrain_surface(face, {0, 1, 2}, affine);
   }
   return builder.finish();
 }
 
-DirichletConditions brain_tip_conditions(const Case& input, const TetMesh& mesh, const DofMap& map) {
+DirichletConditions brain_tip_conditions(const std::optional<MotionSpec>& tied_cavity_motion, const TetMesh& mesh,
+                                         const DofMap& map) {
   ConditionBuilder builder(mesh, map);
   builder.constrain_surface("fixed", {0, 1, 2}, builder.add_field(kZeroField));
-  if (input.text("contact.mode") != "tied") return builder.finish();
-  const NeedleMotion motion = needle_motion_from_spec(parse_motion_spec(input));
+  if (!tied_cavity_motion) return builder.finish();
+  const NeedleMotion motion = needle_motion_from_spec(*tied_cavity_motion);
   builder.constrain_surface("cavity", {0, 1, 2}, builder.add_field([motion](const Point3& X, double t) {
                               const double elapsed = motion.elapsed(t);
                               const double angle = motion.rotation_speed * elapsed;
@@ -149,22 +150,21 @@ DirichletConditions brain_tip_conditions(const Case& input, const TetMesh& mesh,
   return builder.finish();
 }
 
-DirichletConditions mesh_scene_conditions(const Case& input, const TetMesh& mesh, const DofMap& map) {
+DirichletConditions mesh_scene_conditions(const MeshSceneGroupsSpec& groups, const LoadingSpec& loading,
+                                          const TetMesh& mesh, const DofMap& map) {
   ConditionBuilder builder(mesh, map);
   const int zero = builder.add_field(kZeroField);
-  for (const auto& group : input.texts("groups.fixed")) builder.constrain_surface(group, {0, 1, 2}, zero);
-  for (const auto& group : input.texts("groups.roller")) {
+  for (const auto& group : groups.fixed) builder.constrain_surface(group, {0, 1, 2}, zero);
+  for (const auto& group : groups.roller) {
     const std::optional<int> axis = normal_axis(mesh, group);
     if (!axis)
-      throw input.error("groups.roller", fmt::format("group '{}' of {} is not a plane x, y or z = const, and a roller "
-                                                     "holds the normal component of such a plane only", group,
-                                                     input.path("scene.mesh_file").string()));
+      throw case_error(groups.origin, "groups.roller",
+                       fmt::format("group '{}' of {} is not a plane x, y or z = const, and a roller holds the normal "
+                                   "component of such a plane only", group, groups.mesh_file.string()));
     builder.constrain_surface(group, {*axis}, zero);
   }
-  const std::vector<double> gradient = input.reals("displacement.gradient");
-  std::array<double, 9> displacement_gradient{};  // F - I
-  for (int n = 0; n < 9; ++n) displacement_gradient[n] = gradient[n] - (n % 4 == 0 ? 1.0 : 0.0);
-  const int displaced = builder.add_field([displacement_gradient, history = LoadHistory::from_spec(parse_loading_spec(input))](
+  const std::array<double, 9> displacement_gradient = minus_identity(groups.displacement_gradient);
+  const int displaced = builder.add_field([displacement_gradient, history = LoadHistory::from_spec(loading)](
                                               const Point3& X, double t) {
     const double s = history.factor(t);
     Point3 u = history.translation(t);
@@ -172,14 +172,15 @@ DirichletConditions mesh_scene_conditions(const Case& input, const TetMesh& mesh
       for (int J = 0; J < 3; ++J) u[i] += s * displacement_gradient[3 * i + J] * X[J];
     return u;
   });
-  for (const auto& group : input.texts("groups.displaced")) builder.constrain_surface(group, {0, 1, 2}, displaced);
+  for (const auto& group : groups.displaced) builder.constrain_surface(group, {0, 1, 2}, displaced);
   return builder.finish();
 }
 
-DirichletConditions scene_conditions(const Case& input, const TetMesh& mesh, const DofMap& map) {
-  if (input.text("scene.kind") == "block") return block_conditions(input, mesh, map);
-  if (input.text("scene.kind") == "mesh") return mesh_scene_conditions(input, mesh, map);
-  return brain_tip_conditions(input, mesh, map);
+DirichletConditions scene_conditions(const BoundarySpec& boundary, const TetMesh& mesh, const DofMap& map) {
+  if (boundary.scene_kind == SceneKind::block) return block_conditions(boundary.block, mesh, map);
+  if (boundary.scene_kind == SceneKind::mesh)
+    return mesh_scene_conditions(boundary.groups, boundary.loading, mesh, map);
+  return brain_tip_conditions(boundary.tied_cavity_motion, mesh, map);
 }
 
 }  // namespace needlefem::mechanics

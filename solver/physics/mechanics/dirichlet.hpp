@@ -35,13 +35,10 @@
 #include <optional>
 #include <vector>
 
+#include "case/specs/boundary_spec.hpp"
 #include "model/tet_mesh.hpp"
 #include "physics/mechanics/dof_map.hpp"
 #include "physics/mechanics/load_history.hpp"
-
-namespace needlefem {
-class Case;
-}
 
 namespace needlefem::mechanics {
 
@@ -64,15 +61,19 @@ struct DirichletConditions {
   }
 };
 
-DirichletConditions block_conditions(const Case& input, const TetMesh& mesh, const DofMap& map);
+DirichletConditions block_conditions(const BlockSpec& block, const TetMesh& mesh, const DofMap& map);
 
 // The first time at which the block's applied field F(s) = I + s (F - I), s = ramp_then_hold(t),
 // has det F(s) <= 0 (it would turn the block inside out), or none. No elastic state exists past
 // it: a run stops there with a clear error instead of IDA shrinking its step to 1e-14 s.
-std::optional<double> block_inversion_time_s(const Case& input);
-DirichletConditions brain_tip_conditions(const Case& input, const TetMesh& mesh, const DofMap& map);
-DirichletConditions mesh_scene_conditions(const Case& input, const TetMesh& mesh, const DofMap& map);
+std::optional<double> block_inversion_time_s(const BlockSpec& block);
+// The fixed faces, and with a tied needle (BoundarySpec::tied_cavity_motion) the cavity moved with it.
+DirichletConditions brain_tip_conditions(const std::optional<MotionSpec>& tied_cavity_motion, const TetMesh& mesh,
+                                         const DofMap& map);
+// Throws CaseError for a roller group that is not a coordinate plane, and LoadHistory::from_spec's.
+DirichletConditions mesh_scene_conditions(const MeshSceneGroupsSpec& groups, const LoadingSpec& loading,
+                                          const TetMesh& mesh, const DofMap& map);
 // The conditions of the case's scene.kind.
-DirichletConditions scene_conditions(const Case& input, const TetMesh& mesh, const DofMap& map);
+DirichletConditions scene_conditions(const BoundarySpec& boundary, const TetMesh& mesh, const DofMap& map);
 
 }  // namespace needlefem::mechanics

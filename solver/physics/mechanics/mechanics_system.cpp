@@ -12,8 +12,6 @@
 
 #include <fmt/format.h>
 
-#include "case/case.hpp"
-#include "integration/case_options.hpp"
 
 namespace needlefem::mechanics {
 
@@ -60,11 +58,6 @@ void for_each_element_summed(std::size_t elements, double* out, std::size_t size
     for (std::size_t i = 0; i < size; ++i)
       for (const auto& copy : copies) out[i] += copy[i];
   }
-}
-
-elements::Formulation formulation_from_case(const Case& input) {
-  return input.text("element.formulation") == "displacement" ? elements::Formulation::displacement
-                                                               : elements::Formulation::mean_dilatation;
 }
 
 }  // namespace
@@ -149,11 +142,11 @@ MechanicsSystem::~MechanicsSystem() {
   MatDestroy(&jacobian_);
 }
 
-std::unique_ptr<MechanicsSystem> MechanicsSystem::from_case(const Case& input, const TetMesh& mesh) {
+std::unique_ptr<MechanicsSystem> MechanicsSystem::from_spec(const MechanicsSpec& spec, const TetMesh& mesh,
+                                                           const NewtonMatrixOptions& solver_options) {
   const DofMap map = tissue_dof_map(mesh);
-  return std::make_unique<MechanicsSystem>(mesh, material::material_from_spec(parse_material_spec(input)), formulation_from_case(input),
-                                           scene_conditions(input, mesh, map),
-                                           newton_matrix_options_from_case(input));
+  return std::make_unique<MechanicsSystem>(mesh, material::material_from_spec(spec.material), spec.formulation,
+                                           scene_conditions(spec.boundary, mesh, map), solver_options);
 }
 
 void MechanicsSystem::initial_state(double t0, Vec y, Vec ydot) {

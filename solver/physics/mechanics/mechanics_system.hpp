@@ -47,6 +47,7 @@
 
 #include <petscksp.h>
 
+#include "case/specs/mechanics_spec.hpp"
 #include "integration/dae_system.hpp"
 #include "integration/newton_matrix_factor.hpp"
 #include "model/tet_mesh.hpp"
@@ -55,10 +56,6 @@
 #include "physics/mechanics/dirichlet.hpp"
 #include "physics/mechanics/dof_map.hpp"
 #include "physics/mechanics/surface_load.hpp"
-
-namespace needlefem {
-class Case;
-}
 
 namespace needlefem::mechanics {
 
@@ -72,9 +69,10 @@ class MechanicsSystem final : public DaeSystem {
   MechanicsSystem(const MechanicsSystem&) = delete;
   MechanicsSystem& operator=(const MechanicsSystem&) = delete;
 
-  // Material from [material], formulation from element.formulation, conditions of scene.kind,
-  // linear solver from [integration].
-  static std::unique_ptr<MechanicsSystem> from_case(const Case& input, const TetMesh& mesh);
+  // The case's material, element formulation and conditions of its scene (parse_mechanics_spec);
+  // the linear solver's options from the caller (newton_matrix_options_from_case).
+  static std::unique_ptr<MechanicsSystem> from_spec(const MechanicsSpec& spec, const TetMesh& mesh,
+                                                    const NewtonMatrixOptions& solver_options);
 
   // --- DaeSystem -------------------------------------------------------------------------
   PetscInt local_size() const override { return displacement_dofs() + viscous_dofs() + pressure_dofs(); }
