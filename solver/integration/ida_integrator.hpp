@@ -21,19 +21,10 @@
 
 #include <petscvec.h>
 
+#include "case/specs/integration_spec.hpp"
 #include "integration/dae_system.hpp"
 
 namespace needlefem {
-
-// How IDA's Newton iteration solves with J = dF/dy + cj dF/dy':
-//   modified  the system's factored J (DaeSystem::setup_jacobian), kept over many iterations
-//             and steps until IDA judges it stale (cj changed, slow convergence).
-//   krylov    GMRES on products with the current J (IDA's difference quotients of F),
-//             left-preconditioned by that same factored J. The Newton iteration then stays
-//             (inexactly) a full Newton while the factorisation ages, so far fewer
-//             factorisations are needed when each is expensive; each GMRES iteration costs a
-//             residual evaluation and a triangular solve.
-enum class NewtonMethod { modified, krylov };
 
 struct IdaOptions {
   double relative_tolerance = 1e-4;
@@ -43,6 +34,15 @@ struct IdaOptions {
   double initial_step = 0.0;       // s; 0 lets IDA choose
   double max_step = 0.0;           // s; 0 means unbounded
   int max_newton_iterations = 4;   // per step attempt (IDA's default)
+  // How IDA's Newton iteration solves with J = dF/dy + cj dF/dy' (NewtonMethod, the choice of
+  // integration.newton, case/specs/integration_spec.hpp):
+  //   modified  the system's factored J (DaeSystem::setup_jacobian), kept over many iterations
+  //             and steps until IDA judges it stale (cj changed, slow convergence).
+  //   krylov    GMRES on products with the current J (IDA's difference quotients of F),
+  //             left-preconditioned by that same factored J. The Newton iteration then stays
+  //             (inexactly) a full Newton while the factorisation ages, so far fewer
+  //             factorisations are needed when each is expensive; each GMRES iteration costs a
+  //             residual evaluation and a triangular solve.
   NewtonMethod newton = NewtonMethod::modified;
   // Newton stops when its estimated error is below this fraction of the local error test's
   // tolerance (IDA's epcon, default 0.33). Near-incompressible tissue amplifies a displacement

@@ -20,7 +20,7 @@
 #include "case/case.hpp"
 #include "case/mesh_resolution.hpp"
 #include "integration/blas_threads.hpp"
-#include "integration/case_options.hpp"
+#include "integration/options_from_spec.hpp"
 #include "integration/ida_integrator.hpp"
 #include "integration/petsc_session.hpp"
 #include "mesh/mesh_cache.hpp"
@@ -171,8 +171,9 @@ struct RunRecord {
   double mesh_s = 0.0, integration_s = 0.0, output_s = 0.0;
 };
 
-nlohmann::json summary_json(const Case& c, const material::Material* material, const SceneModel* scene,
-                            const SafetyReport* safety, const RunRecord& record, double wall_s) {
+nlohmann::json summary_json(const Case& c, const IntegrationSpec& integration, const material::Material* material,
+                            const SceneModel* scene, const SafetyReport* safety, const RunRecord& record,
+                            double wall_s) {
   nlohmann::json s;
   s["case_file"] = c.origin();
   s["status"] = "completed";
@@ -210,7 +211,7 @@ nlohmann::json summary_json(const Case& c, const material::Material* material, c
                                       {"inverted_element_jacobians", record.rejections.inverted_jacobians},
                                       {"failed_factorisations", record.rejections.failed_factorisations},
                                       {"failed_solves", record.rejections.failed_solves}}},
-                 {"linear_solver", c.text("integration.linear_solver")},
+                 {"linear_solver", linear_solver_name(integration.linear_solver)},
                  {"blas_kernel", openblas_kernel()},
                  {"factorisations", {{"cholesky", record.factorisations.cholesky},
                                      {"lu", record.factorisations.lu},
@@ -320,7 +321,7 @@ class RunPass {
     const MechanicsSpec mechanics_spec = parse_mechanics_spec(c_);
     material_ = std::make_unique<material::Material>(material::material_from_spec(mechanics_spec.material));
     const auto system =
-        mechanics::MechanicsSystem::from_spec(mechanics_spec, mesh, newton_matrix_options_from_case(c_));
+        mechanics::MechanicsSystem::from_spec(mechanics_spec, mesh, newton_matrix_options_from_spec(integration_));
     if (needle && options_.head_tilt) needle = contact::needle_from_case(c_, nullptr, options_.head_tilt);
     needle_ = NeedleOutput::attach(c_, mesh, *system, material_->instantaneous_shear_modulus(), std::move(needle));
     scene_loads_ = MeshSceneLoads::attach(c_, mesh, *system, material_->instantaneous_shear_modulus());
@@ -347,7 +348,7 @@ class RunPass {
     for (auto& cells : max_over_time) cells.assign(mesh.tet_count(), 0.0);
     PassOutputs outputs{evaluator, file, history, max_over_time};
 
-    IdaIntegrator integrator(*system, ida_options_from_case(c_), times_.front(), PETSC_COMM_SELF);
+    IdaIntegrator integrator(*system, ida_options_from_spec(integration_), times_.front(), PETSC_COMM_SELF);
     prepare_integrator(integrator, *system);
     last_report_ = Clock::now();
     double integration_s = 0.0;
@@ -389,9 +390,8 @@ class RunPass {
   void prepare_integrator(IdaIntegrator& integrator, const mechanics::MechanicsSystem& system) {
     Vec atol = nullptr;
     petsc_check(VecDuplicate(integrator.state(), &atol), "VecDuplicate");
-    system.absolute_tolerances(atol, c_.real("integration.absolute_tolerance"),
-                               c_.real("integration.viscous_stress_absolute_tolerance_pa"),
-                               c_.real("integration.pressure_absolute_tolerance_pa"));
+    system.absolute_tolerances(atol, integration_.absolute_tolerance, integration_.viscous_stress_absolute_tolerance_pa,
+                               integration_.pressure_absolute_tolerance_pa);
     integrator.set_absolute_tolerances(atol);
     VecDestroy(&atol);
     if (times_.size() < 2) return;
@@ -471,7 +471,8 @@ class RunPass {
   }
 
   nlohmann::json summary() const {
-    nlohmann::json summary = summary_json(c_, material_.get(), scene_.get(), safety_.get(), record_, seconds_since(start_));
+    nlohmann::json summary =
+        summary_json(c_, integration_, material_.get(), scene_.get(), safety_.get(), record_, seconds_since(start_));
     if (needle_) summary.update(needle_->summary());
     return summary;
   }
@@ -494,7 +495,9 @@ class RunPass {
   const Case& c_;
   const RunOptions& options_;
   const Clock::time_point start_ = Clock::now();
-  const std::vector<double> times_ = output_times(c_);  // its case errors before anything is written
+  // Their case errors before anything is written.
+  const std::vector<double> times_ = output_times(c_);
+  const IntegrationSpec integration_ = parse_integration_spec(c_);
   RunRecord record_;
   std::unique_ptr<SceneModel> scene_;
   std::unique_ptr<material::Material> material_;

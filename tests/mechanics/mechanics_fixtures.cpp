@@ -7,7 +7,8 @@
 
 #include <unistd.h>
 
-#include "integration/case_options.hpp"
+#include "case/specs/integration_spec.hpp"
+#include "integration/options_from_spec.hpp"
 
 namespace needlefem::mechanics::testing {
 
@@ -46,7 +47,7 @@ Problem::Problem(const std::string& toml, const std::vector<std::string>& overri
     : input(Case::parse(toml, "test", overrides)),
       scene(meshed(input)),
       system(MechanicsSystem::from_spec(parse_mechanics_spec(input), scene.mesh,
-                                        newton_matrix_options_from_case(input))) {
+                                        newton_matrix_options_from_spec(parse_integration_spec(input)))) {
   VecCreateSeq(PETSC_COMM_SELF, system->local_size(), &y);
   VecDuplicate(y, &ydot);
   system->initial_state(0.0, y, ydot);

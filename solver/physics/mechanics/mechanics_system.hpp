@@ -70,7 +70,7 @@ class MechanicsSystem final : public DaeSystem {
   MechanicsSystem& operator=(const MechanicsSystem&) = delete;
 
   // The case's material, element formulation and conditions of its scene (parse_mechanics_spec);
-  // the linear solver's options from the caller (newton_matrix_options_from_case).
+  // the linear solver's options from the caller (newton_matrix_options_from_spec).
   static std::unique_ptr<MechanicsSystem> from_spec(const MechanicsSpec& spec, const TetMesh& mesh,
                                                     const NewtonMatrixOptions& solver_options);
 
