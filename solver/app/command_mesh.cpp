@@ -85,7 +85,7 @@ void run_mesh(const CaseOptions& options) {
   const Case c = Case::load(options.case_file, options.overrides);
   const std::filesystem::path out(options.out_dir);
   std::filesystem::create_directories(out);
-  const SceneModel scene = run::load_run_scene(c, out, stderr);
+  const SceneModel scene = run::load_run_scene(c, run::parse_run_specs(c), out, stderr);
   // The configured part count, or 2 to show what METIS buys when the mesh runs serially.
   const Partition partition = partition_tets(scene.mesh, std::max<int>(2, static_cast<int>(c.integer("mesh.partitions"))));
 

@@ -18,7 +18,6 @@
 #include "integration/petsc_session.hpp"
 #include "output/xdmf_text.hpp"
 #include "physics/contact/hinged_needle.hpp"
-#include "physics/contact/needle_contact.hpp"
 #include "run/output_schedule.hpp"
 #include "steering/steering_case.hpp"
 
@@ -179,15 +178,15 @@ std::string hinge_outputs(nlohmann::json& summary, const RunOptions& options, co
 
 }  // namespace
 
-bool head_turns_in_tissue(const Case& c) {
-  return contact::needle_contact_enabled(parse_scene_kind(c), parse_contact_spec(c).mode) &&
-         needle_tip_from_case(c).kind == NeedleTip::Kind::Compliant;
+bool head_turns_in_tissue(const Case& c, const RunSpecs& specs) {
+  return needle_in_contact(specs) && needle_tip_from_case(c).kind == NeedleTip::Kind::Compliant;
 }
 
-nlohmann::json run_hinged_case(const Case& c, const RunOptions& options, const RunPass& run_pass) {
+nlohmann::json run_hinged_case(const Case& c, const RunSpecs& specs, const RunOptions& options,
+                               const RunPass& run_pass) {
   const steering::SteeringSetup setup = steering::steering_setup_from_case(c);
   const double stiffness = setup.model.hinge.hinge_stiffness_n_m_per_rad();
-  const std::vector<double> times = output_times(c);
+  const std::vector<double> times = output_times(c, specs.loading);
   std::vector<Pull> pulls;
   for (double t : times) pulls.push_back(pull_at(c, setup, t));
   if (pulls.front().eq27_case_rad > kLargestStartTilt)
@@ -214,7 +213,7 @@ nlohmann::json run_hinged_case(const Case& c, const RunOptions& options, const R
                  pass == 1 ? "Eq. 2.7 with the case's tissue term" : "the moment balance of the pass before");
     RunOptions pass_options = options;
     pass_options.head_tilt = std::make_shared<contact::HeadTilt>(times, tilts);
-    summary = run_pass(c, pass_options);
+    summary = run_pass(c, specs, pass_options);
     moments = head_moments_of(c, summary, times.size());
     residuals = imbalance(pulls, tilts, moments, stiffness);
     residual = *std::max_element(residuals.begin(), residuals.end());

@@ -43,6 +43,7 @@
 #include <nlohmann/json.hpp>
 
 #include "run/run_case.hpp"
+#include "run/run_specs.hpp"
 
 namespace needlefem {
 class Case;
@@ -50,15 +51,18 @@ class Case;
 
 namespace needlefem::run {
 
-// True when the case's needle is the compliant tip in frictional contact.
-bool head_turns_in_tissue(const Case& c);
+// True when the case's needle is the compliant tip in frictional contact. Takes the Case for the
+// needle's tip (needle_tip_from_case).
+bool head_turns_in_tissue(const Case& c, const RunSpecs& specs);
 
 // One run of the case with the head's tilt prescribed (options.head_tilt); returns its summary.
-using RunPass = std::function<nlohmann::json(const Case&, const RunOptions&)>;
+using RunPass = std::function<nlohmann::json(const Case&, const RunSpecs&, const RunOptions&)>;
 
 // Runs passes until the tilt balances the hinge (see above); returns the final summary, also
 // written to out_dir/summary.json. Throws CaseError for a magnet schedule that turns the head
-// before the tissue has been loaded (at the first output time).
-nlohmann::json run_hinged_case(const Case& c, const RunOptions& options, const RunPass& run_pass);
+// before the tissue has been loaded (at the first output time). Takes the Case for the steering.*
+// keys and output.interval_s.
+nlohmann::json run_hinged_case(const Case& c, const RunSpecs& specs, const RunOptions& options,
+                               const RunPass& run_pass);
 
 }  // namespace needlefem::run

@@ -14,19 +14,21 @@ namespace {
 constexpr double kMm2PerM2 = 1e6;
 }  // namespace
 
-std::unique_ptr<MeshSceneLoads> MeshSceneLoads::attach(const Case& input, const TetMesh& mesh,
-                                                       mechanics::MechanicsSystem& system, double reference_modulus) {
-  if (input.text("scene.kind") != "mesh") return nullptr;
-  return std::make_unique<MeshSceneLoads>(input, mesh, system, reference_modulus);
+std::unique_ptr<MeshSceneLoads> MeshSceneLoads::attach(const Case& input, const RunSpecs& specs, const TetMesh& mesh,
+                                                       mechanics::MechanicsSystem& system,
+                                                       const contact::ContactParameters& contact_parameters) {
+  if (specs.scene_kind != SceneKind::mesh) return nullptr;
+  return std::make_unique<MeshSceneLoads>(input, specs, mesh, system, contact_parameters);
 }
 
-MeshSceneLoads::MeshSceneLoads(const Case& input, const TetMesh& mesh, mechanics::MechanicsSystem& system,
-                               double reference_modulus)
+MeshSceneLoads::MeshSceneLoads(const Case& input, const RunSpecs& specs, const TetMesh& mesh,
+                               mechanics::MechanicsSystem& system,
+                               const contact::ContactParameters& contact_parameters)
     : system_(system),
-      history_(mechanics::LoadHistory::from_spec(parse_loading_spec(input))),
+      history_(mechanics::LoadHistory::from_spec(specs.loading)),
       pressure_pa_(input.real("pressure.value_pa")),
       pressure_(!input.texts("groups.pressure").empty()),
-      contact_(contact::scene_obstacle_contact(input, mesh, reference_modulus)) {
+      contact_(contact::scene_obstacle_contact(input, specs.obstacle, contact_parameters, mesh)) {
   if (pressure_)
     system.add_surface_load(std::make_shared<mechanics::SurfacePressure>(
         mesh, input.texts("groups.pressure"),

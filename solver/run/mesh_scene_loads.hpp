@@ -18,6 +18,7 @@
 
 #include "physics/contact/penalty_contact.hpp"
 #include "physics/mechanics/load_history.hpp"
+#include "run/run_specs.hpp"
 
 namespace needlefem {
 class Case;
@@ -31,11 +32,13 @@ namespace needlefem::run {
 class MeshSceneLoads {
  public:
   // nullptr unless scene.kind = "mesh"; otherwise adds the loads to `system` (`mesh` and `system`
-  // must outlive the result). μ₀ = the tissue's instantaneous shear modulus scales the penalty.
-  static std::unique_ptr<MeshSceneLoads> attach(const Case& input, const TetMesh& mesh,
-                                                mechanics::MechanicsSystem& system, double reference_modulus);
-  MeshSceneLoads(const Case& input, const TetMesh& mesh, mechanics::MechanicsSystem& system,
-                 double reference_modulus);
+  // must outlive the result), the obstacle's contact by the [contact] law `contact_parameters`
+  // (run_contact_parameters). Takes the Case for the [pressure] keys and the needle obstacle.
+  static std::unique_ptr<MeshSceneLoads> attach(const Case& input, const RunSpecs& specs, const TetMesh& mesh,
+                                                mechanics::MechanicsSystem& system,
+                                                const contact::ContactParameters& contact_parameters);
+  MeshSceneLoads(const Case& input, const RunSpecs& specs, const TetMesh& mesh, mechanics::MechanicsSystem& system,
+                 const contact::ContactParameters& contact_parameters);
 
   std::string history_header() const;                          // starts with a comma
   std::string history_cells(double t, Vec y, Vec ydot) const;  // starts with a comma

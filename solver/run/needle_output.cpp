@@ -11,7 +11,6 @@
 
 #include "case/case.hpp"
 #include "integration/petsc_arrays.hpp"
-#include "physics/mechanics/load_history.hpp"
 #include "physics/mechanics/mechanics_system.hpp"
 
 namespace needlefem::run {
@@ -32,18 +31,18 @@ double largest_magnitude(const std::vector<double>& values) {
 }  // namespace
 
 std::unique_ptr<NeedleOutput> NeedleOutput::attach(const Case& input, const TetMesh& mesh,
-                                                   mechanics::MechanicsSystem& system, double reference_modulus,
+                                                   mechanics::MechanicsSystem& system,
+                                                   const contact::ContactParameters& contact_parameters,
                                                    std::shared_ptr<const contact::Needle> needle) {
   if (!needle) return nullptr;
-  return std::make_unique<NeedleOutput>(input, mesh, system, reference_modulus, std::move(needle));
+  return std::make_unique<NeedleOutput>(input, mesh, system, contact_parameters, std::move(needle));
 }
 
 NeedleOutput::NeedleOutput(const Case& input, const TetMesh& mesh, mechanics::MechanicsSystem& system,
-                           double reference_modulus, std::shared_ptr<const contact::Needle> needle)
+                           const contact::ContactParameters& contact_parameters,
+                           std::shared_ptr<const contact::Needle> needle)
     : system_(system),
-      contact_(contact::contact_parameters_from_spec(parse_contact_spec(input), reference_modulus,
-                                                     mechanics::history_end(parse_loading_spec(input))),
-               mesh, std::move(needle)),
+      contact_(contact_parameters, mesh, std::move(needle)),
       initial_gap_(contact_.initial_gap()) {
   system.add_surface_load(contact_.surface_load());
   if (!input.flag("needle.deflection_check")) return;

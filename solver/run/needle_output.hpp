@@ -47,13 +47,16 @@ namespace needlefem::run {
 class NeedleOutput {
  public:
   // nullptr without a needle (needle contact off for this case); otherwise builds the contact with
-  // `needle` and adds it to `system` (both `mesh` and `system` must outlive the result).
+  // `needle` by the [contact] law `contact_parameters` (run_contact_parameters) and adds it to
+  // `system` (both `mesh` and `system` must outlive the result). Takes the Case for the
+  // needle.deflection_check keys.
   static std::unique_ptr<NeedleOutput> attach(const Case& input, const TetMesh& mesh,
-                                              mechanics::MechanicsSystem& system, double reference_modulus,
+                                              mechanics::MechanicsSystem& system,
+                                              const contact::ContactParameters& contact_parameters,
                                               std::shared_ptr<const contact::Needle> needle);
 
   NeedleOutput(const Case& input, const TetMesh& mesh, mechanics::MechanicsSystem& system,
-               double reference_modulus, std::shared_ptr<const contact::Needle> needle);
+               const contact::ContactParameters& contact_parameters, std::shared_ptr<const contact::Needle> needle);
 
   static std::vector<output::FieldSpec> field_specs();
   std::string history_header() const;  // starts with a comma

@@ -9,8 +9,8 @@
 
 namespace needlefem::run {
 
-std::vector<double> output_times(const Case& c) {
-  const double end = mechanics::history_end(parse_loading_spec(c)), interval = c.real("output.interval_s");
+std::vector<double> output_times(const Case& c, const LoadingSpec& loading) {
+  const double end = mechanics::history_end(loading), interval = c.real("output.interval_s");
   // Every output time writes every field: 1e4 of them is already gigabytes on a fine mesh, and
   // 1e-9 s over 0.1 s once wrote hundreds of MB of metadata alone.
   constexpr double max_output_times = 1e4;

@@ -4,14 +4,16 @@
 
 #include <vector>
 
+#include "case/specs/loading_spec.hpp"
+
 namespace needlefem {
 class Case;
 }
 
 namespace needlefem::run {
 
-// Ascending, starting at 0 and ending at mechanics::history_end. Throws CaseError (output.interval_s)
-// for more than 1e4 output times.
-std::vector<double> output_times(const Case& c);
+// Ascending, starting at 0 and ending at mechanics::history_end of `loading`. Throws CaseError
+// (output.interval_s) for more than 1e4 output times. Takes the Case for output.interval_s.
+std::vector<double> output_times(const Case& c, const LoadingSpec& loading);
 
 }  // namespace needlefem::run

@@ -260,10 +260,11 @@ void print_progress(std::FILE* stream, double t, double end, const IdaCounters& 
 
 }  // namespace
 
-SceneModel load_run_scene(const Case& c, const std::filesystem::path& out_dir, std::FILE* progress,
-                          std::shared_ptr<const contact::Needle>* needle) {
+SceneModel load_run_scene(const Case& c, const RunSpecs& specs, const std::filesystem::path& out_dir,
+                          std::FILE* progress, std::shared_ptr<const contact::Needle>* needle) {
   SceneModel scene = load_scene_model(c, out_dir, progress);
-  contact::RoundedCavity rounded = contact::round_cavity_to_needle(c, scene.mesh);
+  if (!needle_in_contact(specs)) return scene;
+  contact::RoundedCavity rounded = contact::round_cavity_to_needle(c, specs.needle_contact, scene.mesh);
   scene.cavity_rounding = rounded.rounding;
   if (needle) *needle = std::move(rounded.needle);
   if (scene.cavity_rounding.moved_nodes == 0) return scene;
@@ -288,7 +289,7 @@ struct PassOutputs {
 // run that fails or is stopped still writes its summary.
 class RunPass {
  public:
-  RunPass(const Case& c, const RunOptions& options) : c_(c), options_(options) {}
+  RunPass(const Case& c, const RunSpecs& specs, const RunOptions& options) : c_(c), specs_(specs), options_(options) {}
 
   nlohmann::json run() {
     std::filesystem::create_directories(options_.out_dir);
@@ -311,20 +312,21 @@ class RunPass {
  private:
   void integrate() {
     std::shared_ptr<const contact::Needle> needle;  // the one the cavity was rounded to, untilted
-    scene_ = std::make_unique<SceneModel>(load_run_scene(c_, options_.out_dir, options_.progress, &needle));
+    scene_ = std::make_unique<SceneModel>(load_run_scene(c_, specs_, options_.out_dir, options_.progress, &needle));
     require_valid_elements(*scene_);
     record_.mesh_s = seconds_since(start_);
     stop_if_asked(times_.front());
     const TetMesh& mesh = scene_->mesh;
 
     const PetscSession petsc(options_.petsc_options);
-    const MechanicsSpec mechanics_spec = parse_mechanics_spec(c_);
-    material_ = std::make_unique<material::Material>(material::material_from_spec(mechanics_spec.material));
-    const auto system =
-        mechanics::MechanicsSystem::from_spec(mechanics_spec, mesh, newton_matrix_options_from_spec(integration_));
+    material_ = std::make_unique<material::Material>(material::material_from_spec(specs_.mechanics.material));
+    const auto system = mechanics::MechanicsSystem::from_spec(specs_.mechanics, mesh,
+                                                              newton_matrix_options_from_spec(specs_.integration));
     if (needle && options_.head_tilt) needle = contact::needle_from_case(c_, nullptr, options_.head_tilt);
-    needle_ = NeedleOutput::attach(c_, mesh, *system, material_->instantaneous_shear_modulus(), std::move(needle));
-    scene_loads_ = MeshSceneLoads::attach(c_, mesh, *system, material_->instantaneous_shear_modulus());
+    const contact::ContactParameters contact_parameters =
+        run_contact_parameters(specs_, material_->instantaneous_shear_modulus());
+    needle_ = NeedleOutput::attach(c_, mesh, *system, contact_parameters, std::move(needle));
+    scene_loads_ = MeshSceneLoads::attach(c_, specs_, mesh, *system, contact_parameters);
     // The needle's PETSc solvers go before the session does, also when the run fails.
     const struct ReleaseNeedleSolvers {
       NeedleOutput* needle;
@@ -348,12 +350,12 @@ class RunPass {
     for (auto& cells : max_over_time) cells.assign(mesh.tet_count(), 0.0);
     PassOutputs outputs{evaluator, file, history, max_over_time};
 
-    IdaIntegrator integrator(*system, ida_options_from_spec(integration_), times_.front(), PETSC_COMM_SELF);
+    IdaIntegrator integrator(*system, ida_options_from_spec(specs_.integration), times_.front(), PETSC_COMM_SELF);
     prepare_integrator(integrator, *system);
     last_report_ = Clock::now();
     double integration_s = 0.0;
-    const double inversion_s = (mechanics_spec.boundary.scene_kind == SceneKind::block
-                                    ? mechanics::block_inversion_time_s(mechanics_spec.boundary.block)
+    const double inversion_s = (specs_.mechanics.boundary.scene_kind == SceneKind::block
+                                    ? mechanics::block_inversion_time_s(specs_.mechanics.boundary.block)
                                     : std::nullopt)
                                    .value_or(std::numeric_limits<double>::infinity());
     for (const double t : times_) {
@@ -390,8 +392,9 @@ class RunPass {
   void prepare_integrator(IdaIntegrator& integrator, const mechanics::MechanicsSystem& system) {
     Vec atol = nullptr;
     petsc_check(VecDuplicate(integrator.state(), &atol), "VecDuplicate");
-    system.absolute_tolerances(atol, integration_.absolute_tolerance, integration_.viscous_stress_absolute_tolerance_pa,
-                               integration_.pressure_absolute_tolerance_pa);
+    const IntegrationSpec& integration = specs_.integration;
+    system.absolute_tolerances(atol, integration.absolute_tolerance, integration.viscous_stress_absolute_tolerance_pa,
+                               integration.pressure_absolute_tolerance_pa);
     integrator.set_absolute_tolerances(atol);
     VecDestroy(&atol);
     if (times_.size() < 2) return;
@@ -472,7 +475,7 @@ class RunPass {
 
   nlohmann::json summary() const {
     nlohmann::json summary =
-        summary_json(c_, integration_, material_.get(), scene_.get(), safety_.get(), record_, seconds_since(start_));
+        summary_json(c_, specs_.integration, material_.get(), scene_.get(), safety_.get(), record_, seconds_since(start_));
     if (needle_) summary.update(needle_->summary());
     return summary;
   }
@@ -493,11 +496,10 @@ class RunPass {
   }
 
   const Case& c_;
+  const RunSpecs& specs_;
   const RunOptions& options_;
   const Clock::time_point start_ = Clock::now();
-  // Their case errors before anything is written.
-  const std::vector<double> times_ = output_times(c_);
-  const IntegrationSpec integration_ = parse_integration_spec(c_);
+  const std::vector<double> times_ = output_times(c_, specs_.loading);  // its case errors before anything is written
   RunRecord record_;
   std::unique_ptr<SceneModel> scene_;
   std::unique_ptr<material::Material> material_;
@@ -507,12 +509,16 @@ class RunPass {
   Clock::time_point last_report_;  // of the last progress line of an accepted step
 };
 
-nlohmann::json run_one_pass(const Case& c, const RunOptions& options) { return RunPass(c, options).run(); }
+nlohmann::json run_one_pass(const Case& c, const RunSpecs& specs, const RunOptions& options) {
+  return RunPass(c, specs, options).run();
+}
 
 }  // namespace
 
 nlohmann::json run_case(const Case& c, const RunOptions& options) {
-  return head_turns_in_tissue(c) ? run_hinged_case(c, options, run_one_pass) : run_one_pass(c, options);
+  const RunSpecs specs = parse_run_specs(c);  // its case errors before anything is written
+  return head_turns_in_tissue(c, specs) ? run_hinged_case(c, specs, options, run_one_pass)
+                                        : run_one_pass(c, specs, options);
 }
 
 }  // namespace needlefem::run

@@ -26,6 +26,7 @@
 #include <nlohmann/json.hpp>
 
 #include "model/scene_model.hpp"
+#include "run/run_specs.hpp"
 
 namespace needlefem {
 class Case;
@@ -51,8 +52,9 @@ struct RunOptions {
 // The scene a run solves: load_scene_model's mesh with its cavity moved onto the rounded needle
 // in contact (contact::round_cavity_to_needle) and its quality measured again. `needlefem mesh`
 // shows the same mesh. `needle` (optional): set to that needle (null without needle contact).
-SceneModel load_run_scene(const Case& c, const std::filesystem::path& out_dir, std::FILE* progress,
-                          std::shared_ptr<const contact::Needle>* needle = nullptr);
+// Takes the Case for the mesh and the needle's tip.
+SceneModel load_run_scene(const Case& c, const RunSpecs& specs, const std::filesystem::path& out_dir,
+                          std::FILE* progress, std::shared_ptr<const contact::Needle>* needle = nullptr);
 
 // Returns the summary written to out_dir/summary.json. The compliant tip in frictional contact
 // runs as the passes of run/hinge_coupling.hpp.

@@ -63,14 +63,6 @@ void require_cavity_on_needle(const NeedleContactSpec& spec, const TetMesh& mesh
                                  tolerance * kMmPerM));
 }
 
-}  // namespace
-
-bool needle_contact_enabled(SceneKind scene_kind, ContactMode mode) {
-  return scene_kind == SceneKind::brain_tip && mode == ContactMode::frictional;
-}
-
-namespace {
-
 std::shared_ptr<const CadNeedleShape> cad_needle_shape(const NeedleContactSpec& spec,
                                                        const CadTipTriangulation& cad, double edge_radius) {
   try {
@@ -105,10 +97,8 @@ std::shared_ptr<const Needle> needle_from_case(const Case& input, std::shared_pt
   return std::make_shared<RigidNeedle>(tip.bevel, motion, edge_radius);
 }
 
-RoundedCavity round_cavity_to_needle(const Case& input, TetMesh& mesh) {
+RoundedCavity round_cavity_to_needle(const Case& input, const NeedleContactSpec& spec, TetMesh& mesh) {
   constexpr double kRoundingMoveLimit = 4.0;  // edge radii
-  if (!needle_contact_enabled(parse_scene_kind(input), parse_contact_spec(input).mode)) return {};
-  const NeedleContactSpec spec = parse_needle_contact_spec(input);
   const bool user_mesh = !spec.scene_mesh_file.empty();
   std::shared_ptr<const Needle> sharp;  // without the edge rounding, as the cavity was meshed
   RoundedCavity rounded{needle_from_case(input, user_mesh ? &sharp : nullptr), {}};

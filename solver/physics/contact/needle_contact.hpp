@@ -33,7 +33,6 @@
 #include <vector>
 
 #include "case/specs/contact_spec.hpp"
-#include "case/specs/scene_kind.hpp"
 #include "model/cavity_rounding.hpp"
 #include "model/tet_mesh.hpp"
 #include "physics/contact/hinged_needle.hpp"
@@ -56,21 +55,18 @@ namespace needlefem::contact {
 std::shared_ptr<const Needle> needle_from_case(const Case& input, std::shared_ptr<const Needle>* sharp = nullptr,
                                                std::shared_ptr<const HeadTilt> tilt = nullptr);
 
-// True for the brain-tip scene with contact.mode = "frictional".
-bool needle_contact_enabled(SceneKind scene_kind, ContactMode mode);
-
-// With needle contact, moves the mesh's cavity onto the rounded needle of the case at t = 0
-// (model/cavity_rounding.hpp), a user's mesh (scene.mesh_file) once its cavity has been checked
-// against the sharp needle (CaseError naming the largest offset); a tied or absent needle leaves
-// the mesh as it is; a CaseError naming needle.edge_radius_um when the rounding moves the cavity
-// by more than four edge radii (a point sharper than the radius can round). Returns what moved
-// and the needle (null without needle contact), to be the needle in contact too: a CAD tip's
+// For the needle in contact (the brain-tip scene with contact.mode = "frictional"): moves the
+// mesh's cavity onto the rounded needle of the case at t = 0 (model/cavity_rounding.hpp), a
+// user's mesh (spec.scene_mesh_file) once its cavity has been checked against the sharp needle
+// (CaseError naming the largest offset); a CaseError naming needle.edge_radius_um when the
+// rounding moves the cavity by more than four edge radii (a point sharper than the radius can
+// round). Returns what moved and the needle, to be the needle in contact too: a CAD tip's
 // triangulation and core are then built once. Takes the Case for needle_from_case.
 struct RoundedCavity {
   std::shared_ptr<const Needle> needle;
   CavityRounding rounding;
 };
-RoundedCavity round_cavity_to_needle(const Case& input, TetMesh& mesh);
+RoundedCavity round_cavity_to_needle(const Case& input, const NeedleContactSpec& spec, TetMesh& mesh);
 
 struct NeedleLoad {
   Point3 force{};   // on the needle, N

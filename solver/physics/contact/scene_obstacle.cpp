@@ -1,9 +1,7 @@
 // Equations: scene_obstacle.hpp.
 #include "physics/contact/scene_obstacle.hpp"
 
-#include "case/specs/loading_spec.hpp"
 #include "physics/contact/needle_contact.hpp"
-#include "physics/mechanics/load_history.hpp"
 
 namespace needlefem::contact {
 
@@ -33,15 +31,11 @@ std::shared_ptr<const RigidObstacle> scene_obstacle(const Case& input, const Obs
 
 }  // namespace
 
-std::shared_ptr<PenaltyContact> scene_obstacle_contact(const Case& input, const TetMesh& mesh,
-                                                       double reference_modulus) {
-  const ObstacleSpec spec = parse_obstacle_spec(input);
+std::shared_ptr<PenaltyContact> scene_obstacle_contact(const Case& input, const ObstacleSpec& spec,
+                                                       const ContactParameters& parameters, const TetMesh& mesh) {
   auto obstacle = scene_obstacle(input, spec);
   if (!obstacle) return nullptr;
-  return std::make_shared<PenaltyContact>(
-      mesh, spec.group, std::move(obstacle),
-      contact_parameters_from_spec(parse_contact_spec(input), reference_modulus,
-                                   mechanics::history_end(parse_loading_spec(input))));
+  return std::make_shared<PenaltyContact>(mesh, spec.group, std::move(obstacle), parameters);
 }
 
 }  // namespace needlefem::contact

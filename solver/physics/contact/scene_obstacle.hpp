@@ -21,11 +21,10 @@ class Case;
 
 namespace needlefem::contact {
 
-// The contact of the case's obstacle with obstacle.group of `mesh` (which must outlive it), the
-// penalty scaled by the tissue's instantaneous shear modulus μ₀; nullptr for obstacle.kind =
-// "none". Throws CaseError for a zero plane normal. Takes the Case for the needle obstacle's tip
-// (needle_from_case).
-std::shared_ptr<PenaltyContact> scene_obstacle_contact(const Case& input, const TetMesh& mesh,
-                                                       double reference_modulus);
+// The contact of the case's obstacle `spec` with spec.group of `mesh` (which must outlive it), by
+// the [contact] law `parameters` (contact_parameters_from_spec); nullptr for obstacle.kind =
+// "none". Takes the Case for the needle obstacle's tip and motion (needle_from_case).
+std::shared_ptr<PenaltyContact> scene_obstacle_contact(const Case& input, const ObstacleSpec& spec,
+                                                       const ContactParameters& parameters, const TetMesh& mesh);
 
 }  // namespace needlefem::contact

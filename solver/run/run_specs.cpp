@@ -1,0 +1,27 @@
+#include "run/run_specs.hpp"
+
+#include "physics/contact/penalty_contact.hpp"
+#include "physics/mechanics/load_history.hpp"
+
+namespace needlefem::run {
+
+RunSpecs parse_run_specs(const Case& c) {
+  return {.scene_kind = parse_scene_kind(c),
+          .mechanics = parse_mechanics_spec(c),
+          .contact = parse_contact_spec(c),
+          .needle_contact = parse_needle_contact_spec(c),
+          .obstacle = parse_obstacle_spec(c),
+          .loading = parse_loading_spec(c),
+          .integration = parse_integration_spec(c)};
+}
+
+bool needle_in_contact(const RunSpecs& specs) {
+  return specs.scene_kind == SceneKind::brain_tip && specs.contact.mode == ContactMode::frictional;
+}
+
+contact::ContactParameters run_contact_parameters(const RunSpecs& specs, double reference_modulus) {
+  return contact::contact_parameters_from_spec(specs.contact, reference_modulus,
+                                               mechanics::history_end(specs.loading));
+}
+
+}  // namespace needlefem::run

@@ -1,0 +1,45 @@
+// The case parsed once into the specs of the stages a run goes through (run_case.cpp; `needlefem
+// mesh` shows its scene, load_run_scene): each stage gets its own spec rather than the case and
+// its keys. Keys no spec covers yet (the needle's tip, meshing, outputs, safety limits) are still
+// read from the Case where they are used.
+#pragma once
+
+#include "case/specs/contact_spec.hpp"
+#include "case/specs/integration_spec.hpp"
+#include "case/specs/loading_spec.hpp"
+#include "case/specs/mechanics_spec.hpp"
+#include "case/specs/scene_kind.hpp"
+
+namespace needlefem {
+class Case;
+}
+namespace needlefem::contact {
+struct ContactParameters;
+}
+
+namespace needlefem::run {
+
+struct RunSpecs {
+  SceneKind scene_kind;
+  MechanicsSpec mechanics;
+  ContactSpec contact;
+  NeedleContactSpec needle_contact;
+  ObstacleSpec obstacle;
+  LoadingSpec loading;
+  IntegrationSpec integration;
+};
+
+// Throws the CaseErrors of the stages' parsers.
+RunSpecs parse_run_specs(const Case& c);
+
+// True for the brain-tip scene with contact.mode = "frictional": the needle is in contact with
+// the cavity (physics/contact/needle_contact.hpp), which is rounded to it, and the contact is a
+// load of the run. A tied cavity moves with the needle by Dirichlet conditions instead.
+bool needle_in_contact(const RunSpecs& specs);
+
+// The [contact] law in SI units for each contact of the run (the needle's, a mesh scene's
+// obstacle): the penalty scaled by `reference_modulus` μ₀, the tissue's instantaneous shear
+// modulus, the multiplier updates spread over the scene's loading history (mechanics::history_end).
+contact::ContactParameters run_contact_parameters(const RunSpecs& specs, double reference_modulus);
+
+}  // namespace needlefem::run
