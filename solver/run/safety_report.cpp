@@ -108,9 +108,10 @@ SafetyReport::SafetyReport(const Case& c, const TetMesh& mesh, const fields::Tis
   for (const LimitText& text : kLimitText)
     limits_.push_back({text.name, text.field, c.real(std::string("thresholds.") + text.name), text.windowed});
   const double radius = radius_mm_ / kMmPerM;
-  ball_ = std::make_unique<fields::BallAverager>(positions_, volumes_, radius);
-  half_ball_ = std::make_unique<fields::BallAverager>(positions_, volumes_, radius / 2);
-  double_ball_ = std::make_unique<fields::BallAverager>(positions_, volumes_, 2 * radius);
+  const std::vector<fields::Tetrahedron> tissue = evaluator.tissue_tetrahedra();
+  ball_ = std::make_unique<fields::BallAverager>(positions_, volumes_, tissue, radius);
+  half_ball_ = std::make_unique<fields::BallAverager>(positions_, volumes_, tissue, radius / 2);
+  double_ball_ = std::make_unique<fields::BallAverager>(positions_, volumes_, tissue, 2 * radius);
   if (mesh.surface_faces.count(kCavity)) {
     region_ = near_cavity(mesh, positions_, region_mm_ / kMmPerM);
     region_description_ = fmt::format("tissue within {} mm of the cavity surface", region_mm_);

@@ -7,6 +7,8 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "model/tet_geometry.hpp"
+
 namespace needlefem::fields {
 
 namespace {
@@ -30,7 +32,8 @@ int offset_index(long long i, long long j, long long k) {
 
 }  // namespace
 
-BallAverager::BallAverager(std::span<const Point3> positions, std::span<const double> volumes, double radius_m)
+BallAverager::BallAverager(std::span<const Point3> positions, std::span<const double> volumes,
+                           std::span<const Tetrahedron> tissue, double radius_m)
     : radius_(radius_m),
       spacing_(radius_m / kVoxelsPerRadius),
       positions_(positions.begin(), positions.end()),
@@ -71,6 +74,7 @@ BallAverager::BallAverager(std::span<const Point3> positions, std::span<const do
           block.neighbours[n++] = found == block_at.end() ? -1 : found->second;
         }
   }
+  mark_centres_in_tissue(tissue, block_at);
   // In lattice units the ball around a voxel's centre has radius 4: a voxel at offset o is wholly
   // inside when its farthest corner is, outside when its nearest point is beyond 4.
   offset_class_.assign(kWidth * kWidth * kWidth, 0);
@@ -85,6 +89,38 @@ BallAverager::BallAverager(std::span<const Point3> positions, std::span<const do
         }
         offset_class_[offset_index(i, j, k)] = far <= r2 ? 1 : near <= r2 ? 2 : 0;
       }
+}
+
+void BallAverager::mark_centres_in_tissue(std::span<const Tetrahedron> tissue,
+                                          const std::unordered_map<long long, int>& block_at) {
+  // Barycentric coordinates relative to the tetrahedron's size: a centre on a face shared by two
+  // elements, or on the tissue's boundary, counts as inside.
+  constexpr double kOnFace = 1e-10;
+  for (const Tetrahedron& t : tissue) {
+    const double volume = oriented_volume(t[0], t[1], t[2], t[3]);
+    std::array<long long, 3> first, last;  // voxels whose centres (i + 1/2) s lie in the bounding box
+    for (int c = 0; c < 3; ++c) {
+      const auto [lo, hi] = std::minmax({t[0][c], t[1][c], t[2][c], t[3][c]});
+      first[c] = static_cast<long long>(std::ceil(lo / spacing_ - 0.5));
+      last[c] = static_cast<long long>(std::floor(hi / spacing_ - 0.5));
+    }
+    for (long long i = first[0]; i <= last[0]; ++i)
+      for (long long j = first[1]; j <= last[1]; ++j)
+        for (long long k = first[2]; k <= last[2]; ++k) {
+          const std::array<long long, 3> b{floor_div(i, kBlock), floor_div(j, kBlock), floor_div(k, kBlock)};
+          const auto found = block_at.find(key_of(b));
+          if (found == block_at.end()) continue;  // no tissue point within ℓ: no maximum there
+          Block& block = blocks_[found->second];
+          const int local = static_cast<int>(((i - kBlock * b[0]) * kBlock + (j - kBlock * b[1])) * kBlock + (k - kBlock * b[2]));
+          const std::uint64_t bit = std::uint64_t{1} << local;
+          if (block.centres_in_tissue & bit) continue;
+          const Point3 x = centre_of({i, j, k});
+          const double sub[4] = {oriented_volume(x, t[1], t[2], t[3]), oriented_volume(t[0], x, t[2], t[3]),
+                                 oriented_volume(t[0], t[1], x, t[3]), oriented_volume(t[0], t[1], t[2], x)};
+          if (std::all_of(std::begin(sub), std::end(sub), [&](double v) { return v / volume >= -kOnFace; }))
+            block.centres_in_tissue |= bit;
+        }
+  }
 }
 
 std::array<long long, 3> BallAverager::voxel_of(const Point3& x) const {
@@ -206,7 +242,7 @@ LocatedValue BallAverager::maximum(std::span<const double> field) const {
       double block_best = -std::numeric_limits<double>::infinity();
       std::size_t block_slot = kNone;
       for (int l = 0; l < kBlockVoxels; ++l) {
-        if (block.first[l] == block.first[l + 1]) continue;
+        if (!(block.centres_in_tissue & (std::uint64_t{1} << l))) continue;
         const double value = average(sums, field, candidates[c].block, l);
         if (better(value, c * kBlockVoxels + l, block_best, block_slot)) {
           block_best = value;
@@ -220,7 +256,7 @@ LocatedValue BallAverager::maximum(std::span<const double> field) const {
       }
     }
   }
-  if (best_slot == kNone) throw std::invalid_argument("critical distance: no tissue points");
+  if (best_slot == kNone) throw std::invalid_argument("critical distance: no ball centre in the tissue");
   const Block& block = blocks_[candidates[best_slot / kBlockVoxels].block];
   const int l = static_cast<int>(best_slot % kBlockVoxels);
   return {best, centre_of({kBlock * block.index[0] + l / (kBlock * kBlock), kBlock * block.index[1] + (l / kBlock) % kBlock,

@@ -15,11 +15,16 @@
 //     tissue part only. The integrals are the quadrature's own: Σ w_q f_q / Σ w_q over the points
 //     inside the ball, so the ball's rim is sampled to the element size and the value converges
 //     with the mesh. Centres lie on a lattice fixed in space (spacing s = ℓ/4, a vertex at the
-//     origin): the centres of the lattice's voxels that hold tissue points; the maximum of a
-//     smooth average sampled at that spacing is within O(s²) of the true one. Closed forms
+//     origin): the voxel centres that lie in the tissue (in one of its elements' straight
+//     tetrahedra through their vertices, which differ from curved boundary elements by O(h²)).
+//     A centre is a point of the material, as in Taylor's volume method: a centre just inside the
+//     needle would average a thin tissue shell along the needle's surface, a value that tends to
+//     the point value, and whether a voxel straddling the surface held a tissue point would
+//     depend on the mesh. The maximum of a smooth average sampled at that spacing is within O(s)
+//     of the true one at the tissue's surface, O(s²) inside it. Closed forms
 //     (homogeneous field: its value; linear field, full ball: the centre's value; quadratic
-//     |X - c|²: 3ℓ²/5; a ball cut by a plane face: the truncated ball's mean) in
-//     tests/run/test_safety_metrics.cpp.
+//     |X - c|²: 3ℓ²/5; a ball cut by a plane face: the truncated ball's mean; no centre outside
+//     the tissue) in tests/run/test_safety_metrics.cpp.
 //   volume above the limit (the cumulative strain damage measure of head-injury models, CSDM;
 //     Takhounts et al. 2003, Stapp Car Crash J. 47): V = Σ_{f_q > limit} w_q, and its fraction
 //     of a stated region;
@@ -34,6 +39,7 @@
 // cannot beat the best average found.
 #pragma once
 
+#include <cstdint>
 #include <span>
 #include <unordered_map>
 #include <vector>
@@ -42,6 +48,8 @@
 
 namespace needlefem::fields {
 
+using Tetrahedron = std::array<Point3, 4>;  // vertex positions, metres
+
 struct LocatedValue {
   double value = 0.0;
   Point3 position{};  // reference position, metres
@@ -49,11 +57,13 @@ struct LocatedValue {
 
 class BallAverager {
  public:
-  // `positions` and `volumes` per point (both as many); radius_m > 0.
-  BallAverager(std::span<const Point3> positions, std::span<const double> volumes, double radius_m);
+  // `positions` and `volumes` per point (both as many), `tissue` the tetrahedra they fill (ball
+  // centres lie in them); radius_m > 0.
+  BallAverager(std::span<const Point3> positions, std::span<const double> volumes,
+               std::span<const Tetrahedron> tissue, double radius_m);
 
   double radius() const { return radius_; }
-  // The largest ball average of `field` (one value per point), at a voxel centre.
+  // The largest ball average of `field` (one value per point), at a voxel centre in the tissue.
   LocatedValue maximum(std::span<const double> field) const;
   // The ball average around the centre of the voxel that contains `x`, and that centre.
   LocatedValue average_around(const Point3& x, std::span<const double> field) const;
@@ -66,10 +76,12 @@ class BallAverager {
     std::array<int, kBlockVoxels + 1> first{};  // the block's points, voxel by voxel (CSR)
     std::vector<int> points;
     std::array<int, 27> neighbours{};           // block indices of the 27 blocks around, -1 if none
+    std::uint64_t centres_in_tissue = 0;        // bit l: voxel l's centre lies in the tissue
   };
   struct Sums {
     std::vector<double> weighted, volume, largest;  // per block and voxel
   };
+  void mark_centres_in_tissue(std::span<const Tetrahedron> tissue, const std::unordered_map<long long, int>& block_at);
   std::array<long long, 3> voxel_of(const Point3& x) const;
   Point3 centre_of(const std::array<long long, 3>& voxel) const;
   Sums accumulate(std::span<const double> field) const;

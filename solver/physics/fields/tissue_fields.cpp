@@ -142,6 +142,15 @@ TissueFields TissueFieldEvaluator::evaluate(Vec y, Vec ydot) const {
   return out;
 }
 
+std::vector<std::array<Point3, 4>> TissueFieldEvaluator::tissue_tetrahedra() const {
+  std::vector<std::array<Point3, 4>> out;
+  for (std::size_t e : system_.dof_map().tissue_tets) {
+    const int* tet = mesh_.tet(e);
+    out.push_back({mesh_.nodes[tet[0]], mesh_.nodes[tet[1]], mesh_.nodes[tet[2]], mesh_.nodes[tet[3]]});
+  }
+  return out;
+}
+
 std::vector<material::Mat3d> TissueFieldEvaluator::deformation_gradients(Vec y) const {
   const ReadArray state(y);
   const int points = static_cast<int>(shape_values_.size());

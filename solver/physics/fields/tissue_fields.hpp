@@ -74,6 +74,9 @@ class TissueFieldEvaluator {
   // volume w_q (quadrature weight times det J, m³).
   const std::vector<Point3>& point_positions() const { return point_positions_; }
   const std::vector<double>& point_volumes() const { return point_volumes_; }
+  // The straight tetrahedra through each tissue element's vertices (reference positions, m): the
+  // region the points fill.
+  std::vector<std::array<Point3, 4>> tissue_tetrahedra() const;
 
  private:
   // Node fields filled, every other array sized and zeroed (maxima at -inf).
