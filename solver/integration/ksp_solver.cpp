@@ -1,36 +1,24 @@
 #include "integration/ksp_solver.hpp"
 
-#include <algorithm>
-#include <stdexcept>
-
 #include <fmt/core.h>
 
 #include "integration/petsc_session.hpp"
 
 namespace needlefem {
 
-const std::vector<std::string>& KspSolver::methods() {
-  static const std::vector<std::string> names{"mumps", "gmres-gamg", "gmres-asm"};
-  return names;
-}
-
 KspSolver::KspSolver(MPI_Comm comm, const KspOptions& options) {
-  const auto& names = methods();
-  if (std::find(names.begin(), names.end(), options.method) == names.end())
-    throw std::invalid_argument(fmt::format("unknown linear solver method '{}' (choose mumps, gmres-gamg or gmres-asm)",
-                                            options.method));
   petsc_check(KSPCreate(comm, &ksp_), "KSPCreate");
   PC pc = nullptr;
   petsc_check(KSPGetPC(ksp_, &pc), "KSPGetPC");
-  if (options.method == "mumps") {
+  if (options.method == KspMethod::mumps) {
     petsc_check(KSPSetType(ksp_, KSPPREONLY), "KSPSetType");
     petsc_check(PCSetType(pc, PCLU), "PCSetType");
     petsc_check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
   } else {
     petsc_check(KSPSetType(ksp_, KSPGMRES), "KSPSetType");
-    petsc_check(PCSetType(pc, options.method == "gmres-gamg" ? PCGAMG : PCASM), "PCSetType");
+    petsc_check(PCSetType(pc, options.method == KspMethod::gmres_gamg ? PCGAMG : PCASM), "PCSetType");
   }
-  // Also for "mumps": a Krylov method chosen on the command line inherits them.
+  // Also for MUMPS: a Krylov method chosen on the command line inherits them.
   petsc_check(KSPSetTolerances(ksp_, options.relative_tolerance, PETSC_DEFAULT, PETSC_DEFAULT, options.max_iterations),
               "KSPSetTolerances");
   petsc_check(KSPSetOptionsPrefix(ksp_, options.prefix.c_str()), "KSPSetOptionsPrefix");

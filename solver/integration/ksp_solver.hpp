@@ -1,13 +1,13 @@
 // Linear solves with the Newton matrix J = dF/dy + cj dF/dy' of a DaeSystem, over PETSc KSP.
 //
-// Methods, chosen by name (case key or caller), each a starting point that the user can
-// override on the command line after `--` with the options prefix (default "nf_"), e.g.
-// `-nf_ksp_type fgmres -nf_pc_type hypre`, `-nf_ksp_view`, `-nf_ksp_monitor`:
-//   "mumps"      : direct LU with MUMPS (KSPPREONLY + PCLU); robust for the indefinite
-//                  displacement-pressure systems, the default.
-//   "gmres-gamg" : GMRES preconditioned with PETSc's smoothed-aggregation AMG (give the
-//                  matrix a near-null space of rigid-body modes for elasticity).
-//   "gmres-asm"  : GMRES with additive Schwarz, ILU(0) on each rank's block.
+// Methods (KspMethod; integration.linear_solver's choices of the same names), each a starting
+// point that the user can override on the command line after `--` with the options prefix
+// (default "nf_"), e.g. `-nf_ksp_type fgmres -nf_pc_type hypre`, `-nf_ksp_view`, `-nf_ksp_monitor`:
+//   mumps      ("mumps")      : direct LU with MUMPS (KSPPREONLY + PCLU); robust for the
+//                               indefinite displacement-pressure systems, the default.
+//   gmres_gamg ("gmres-gamg") : GMRES preconditioned with PETSc's smoothed-aggregation AMG (give
+//                               the matrix a near-null space of rigid-body modes for elasticity).
+//   gmres_asm  ("gmres-asm")  : GMRES with additive Schwarz, ILU(0) on each rank's block.
 //
 // factor() hands the matrix to KSP and sets the preconditioner up right away, so that a
 // failed factorisation shows up in the Jacobian setup (where IDA can cut the step) rather
@@ -17,14 +17,15 @@
 #pragma once
 
 #include <string>
-#include <vector>
 
 #include <petscksp.h>
 
 namespace needlefem {
 
+enum class KspMethod { mumps, gmres_gamg, gmres_asm };
+
 struct KspOptions {
-  std::string method = "mumps";
+  KspMethod method = KspMethod::mumps;
   // Krylov methods (also one chosen with -<prefix>ksp_type): ||b - A x|| <= rtol ||b||.
   double relative_tolerance = 1e-10;
   int max_iterations = 1000;
@@ -37,9 +38,6 @@ class KspSolver {
   ~KspSolver();
   KspSolver(const KspSolver&) = delete;
   KspSolver& operator=(const KspSolver&) = delete;
-
-  // The method names accepted by KspOptions::method.
-  static const std::vector<std::string>& methods();
 
   // Use A as the operator and factor it (or build the preconditioner). Returns false if that
   // failed numerically (zero pivot, ...); last_failure() says why. Throws on PETSc errors.

@@ -2,6 +2,7 @@
 #include "integration/newton_matrix_factor.hpp"
 
 #include <exception>
+#include <stdexcept>
 
 #include "integration/ksp_solver.hpp"
 #include "integration/petsc_session.hpp"
@@ -19,6 +20,21 @@ void widen_mumps_workspace(const std::string& prefix) {
   if (!given)
     petsc_check(PetscOptionsSetValue(nullptr, ("-" + prefix + "mat_mumps_icntl_14").c_str(), "100"),
                 "PetscOptionsSetValue");
+}
+
+// The KSP's method for a linear-solver choice: "cholesky" keeps MUMPS LU for the setups that
+// Cholesky does not factor.
+KspMethod ksp_method(LinearSolver solver) {
+  switch (solver) {
+    case LinearSolver::cholesky:
+    case LinearSolver::mumps:
+      return KspMethod::mumps;
+    case LinearSolver::gmres_gamg:
+      return KspMethod::gmres_gamg;
+    case LinearSolver::gmres_asm:
+      return KspMethod::gmres_asm;
+  }
+  throw std::logic_error("ksp_method: a LinearSolver without a KspMethod");
 }
 
 NewtonMatrixFactor& factor_of(PC pc) {
@@ -52,18 +68,16 @@ PetscErrorCode apply_shell(PC pc, Vec b, Vec x) noexcept {
 
 NewtonMatrixFactor::NewtonMatrixFactor(std::vector<char> prescribed, const NewtonMatrixOptions& options) {
   widen_mumps_workspace(options.prefix);
-  KspOptions ksp_options{.method = options.method,
-                         .relative_tolerance = options.relative_tolerance,
-                         .prefix = options.prefix};
-  if (options.method == "cholesky") {
+  const KspOptions ksp_options{.method = ksp_method(options.method),
+                               .relative_tolerance = options.relative_tolerance,
+                               .prefix = options.prefix};
+  if (options.method == LinearSolver::cholesky)
     cholesky_ = std::make_unique<SparseCholesky>(
         std::move(prescribed),
         options.preconditioner_only ? SparseCholesky::Precision::single_precision
                                     : SparseCholesky::Precision::double_precision,
         options.symmetric_preconditioner ? SparseCholesky::Unsymmetric::symmetric_part
                                          : SparseCholesky::Unsymmetric::lu);
-    ksp_options.method = "mumps";
-  }
   ksp_ = std::make_unique<KspSolver>(PETSC_COMM_SELF, ksp_options);
 }
 

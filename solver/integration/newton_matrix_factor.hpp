@@ -3,8 +3,8 @@
 // decide when to try which. The physics assembles J (a SeqAIJ matrix whose prescribed rows are
 // identity rows) and calls factor(), then solve() as often as the integrator asks.
 //
-// integration.linear_solver (NewtonMatrixOptions::method) selects ("cholmod", the first one's
-// former name, still reads as "cholesky": case/schema.cpp)
+// integration.linear_solver (NewtonMatrixOptions::method, the LinearSolver the case names)
+// selects ("cholmod", the first one's former name, still reads as "cholesky": case/schema.cpp)
 //   "cholesky"  : sparse Cholesky of J's symmetric part on the free unknowns (SparseCholesky,
 //                 sparse_cholesky.hpp), MUMPS LU (KspSolver) for a setup where that fails:
 //                 - integration.newton = "modified" (the solves must be exact): CHOLMOD's
@@ -14,7 +14,8 @@
 //                   (single_precision_factor.hpp), by LU with static pivoting where friction
 //                   makes J unsymmetric, unless integration.krylov_preconditioner = "symmetric"
 //                   (then Cholesky of the symmetric part all the same).
-//   "mumps", "gmres-gamg", "gmres-asm": KspSolver's methods (ksp_solver.hpp), every setup.
+//   "mumps", "gmres-gamg", "gmres-asm": KspSolver's methods of the same names (KspMethod,
+//                 ksp_solver.hpp), every setup.
 //
 // Policies (method "cholesky" only):
 // - A symmetric part found indefinite (sliding friction) usually stays so for the next setups:
@@ -40,14 +41,16 @@
 #include <petscmat.h>
 #include <petscpc.h>
 
+#include "case/specs/integration_spec.hpp"
+
 namespace needlefem {
 
 class KspSolver;
 class SparseCholesky;
 
 struct NewtonMatrixOptions {
-  std::string method = "mumps";       // integration.linear_solver: "cholesky" or a KspSolver method
-  double relative_tolerance = 1e-10;  // Krylov methods: ||b - J x|| <= rtol ||b||
+  LinearSolver method = LinearSolver::mumps;  // integration.linear_solver
+  double relative_tolerance = 1e-10;          // Krylov methods: ||b - J x|| <= rtol ||b||
   // PETSc options prefix of the KSP for command-line overrides (-nf_ksp_type ..., -nf_pc_type ...).
   std::string prefix = "nf_";
   // The solves only precondition an outer iteration (integration.newton = "krylov": IDA's GMRES
@@ -63,7 +66,7 @@ struct NewtonMatrixOptions {
 class NewtonMatrixFactor {
  public:
   // prescribed[i] != 0 marks unknown i as given (its row of J is an identity row). PETSc must be
-  // initialised. Throws std::invalid_argument for an unknown method (KspSolver).
+  // initialised.
   NewtonMatrixFactor(std::vector<char> prescribed, const NewtonMatrixOptions& options);
   ~NewtonMatrixFactor();
   NewtonMatrixFactor(const NewtonMatrixFactor&) = delete;

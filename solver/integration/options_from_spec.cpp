@@ -24,7 +24,7 @@ IdaOptions ida_options_from_spec(const IntegrationSpec& spec) {
 
 NewtonMatrixOptions newton_matrix_options_from_spec(const IntegrationSpec& spec, const std::string& prefix) {
   NewtonMatrixOptions options;
-  options.method = linear_solver_name(spec.linear_solver);
+  options.method = spec.linear_solver;
   options.relative_tolerance = spec.linear_relative_tolerance;
   options.prefix = prefix;
   options.preconditioner_only = spec.newton == NewtonMethod::krylov;

@@ -172,7 +172,7 @@ TEST(IdaIntegrator, CountersAreConsistentAndFactorisationsAreReused) {
 // A Krylov solve makes the linear solver matrix-iterative for IDA: same answer, and the
 // iterations are counted.
 TEST(IdaIntegrator, IterativeLinearSolverGivesTheSameAccuracy) {
-  MaxwellSolidSystem system({}, {.method = "gmres-asm", .relative_tolerance = 1e-12});
+  MaxwellSolidSystem system({}, {.method = KspMethod::gmres_asm, .relative_tolerance = 1e-12});
   ASSERT_TRUE(system.iterative_linear_solver());
   IdaIntegrator ida(system, with_tolerance(1e-6), 0.0, PETSC_COMM_SELF);
   set_scaled_tolerances(ida, system.solid(), 1e-6);

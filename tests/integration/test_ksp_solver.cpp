@@ -2,6 +2,7 @@
 // manufactured solution, refactoring with an unchanged pattern reuses the symbolic LU, a
 // singular matrix is reported as a failed factorisation, and the options prefix works.
 #include <cmath>
+#include <utility>
 
 #include <gtest/gtest.h>
 #include <petscksp.h>
@@ -69,19 +70,21 @@ PetscLogDouble event_count(const char* event_name) {
 
 TEST(KspSolver, EachMethodSolvesTheLaplacian) {
   Mat A = laplacian(4.0);
-  for (const auto& method : KspSolver::methods()) {
+  const std::pair<const char*, KspMethod> methods[] = {
+      {"mumps", KspMethod::mumps}, {"gmres-gamg", KspMethod::gmres_gamg}, {"gmres-asm", KspMethod::gmres_asm}};
+  for (const auto& [name, method] : methods) {
     KspSolver solver(PETSC_COMM_SELF, {.method = method, .relative_tolerance = 1e-12});
-    ASSERT_TRUE(solver.factor(A)) << method << ": " << solver.last_failure();
+    ASSERT_TRUE(solver.factor(A)) << name << ": " << solver.last_failure();
     const double error = solve_error(solver, A);
-    EXPECT_LT(error, 1e-9) << method;
-    if (method == "mumps") {
+    EXPECT_LT(error, 1e-9) << name;
+    if (method == KspMethod::mumps) {
       EXPECT_FALSE(solver.is_iterative());
       EXPECT_EQ(solver.iterations(), 0);
     } else {
       EXPECT_TRUE(solver.is_iterative());
-      EXPECT_GT(solver.iterations(), 0) << method;
+      EXPECT_GT(solver.iterations(), 0) << name;
     }
-    std::printf("%-11s relative error %.2e, Krylov iterations %ld\n", method.c_str(), error, solver.iterations());
+    std::printf("%-11s relative error %.2e, Krylov iterations %ld\n", name, error, solver.iterations());
   }
   MatDestroy(&A);
 }
@@ -128,17 +131,13 @@ TEST(KspSolver, SingularMatrixIsAFailedFactorisationNotACrash) {
 TEST(KspSolver, CommandLineOptionsOverrideTheMethodThroughThePrefix) {
   petsc_check(PetscOptionsSetValue(nullptr, "-prefixtest_ksp_type", "cg"), "PetscOptionsSetValue");
   petsc_check(PetscOptionsSetValue(nullptr, "-prefixtest_pc_type", "jacobi"), "PetscOptionsSetValue");
-  KspSolver solver(PETSC_COMM_SELF, {.method = "mumps", .prefix = "prefixtest_"});
+  KspSolver solver(PETSC_COMM_SELF, {.method = KspMethod::mumps, .prefix = "prefixtest_"});
   EXPECT_TRUE(solver.is_iterative());
   Mat A = laplacian(4.0);
   ASSERT_TRUE(solver.factor(A));
   EXPECT_LT(solve_error(solver, A), 1e-6);
   EXPECT_GT(solver.iterations(), 10);
   MatDestroy(&A);
-}
-
-TEST(KspSolver, UnknownMethodIsRejected) {
-  EXPECT_THROW(KspSolver(PETSC_COMM_SELF, {.method = "pardiso"}), std::invalid_argument);
 }
 
 }  // namespace

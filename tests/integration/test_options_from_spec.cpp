@@ -1,6 +1,7 @@
 // The [integration] case keys reach the integration spec and from it the integrator and
 // linear-solver options, with the schema's defaults.
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -27,7 +28,7 @@ TEST(IntegrationOptionsFromSpec, DefaultsAreIdaDefaultsAndSparseCholesky) {
   EXPECT_DOUBLE_EQ(spec.viscous_stress_absolute_tolerance_pa, 0.1);
   EXPECT_DOUBLE_EQ(spec.pressure_absolute_tolerance_pa, 0.1);
   const NewtonMatrixOptions newton = newton_matrix_options_from_spec(spec);
-  EXPECT_EQ(newton.method, "cholesky");
+  EXPECT_EQ(newton.method, LinearSolver::cholesky);
   EXPECT_EQ(newton.prefix, "nf_");
   // Newton-Krylov: the factor only preconditions (single-precision solves), with the exact matrix.
   EXPECT_TRUE(newton.preconditioner_only);
@@ -35,15 +36,22 @@ TEST(IntegrationOptionsFromSpec, DefaultsAreIdaDefaultsAndSparseCholesky) {
 }
 
 // "cholmod", the sparse Cholesky's former name, still selects it, in the file and in overrides;
-// every choice of the key reaches the factor under its own name.
+// every choice of the key reaches the factor as its own enumerator, and summary.json names it
+// under the key's name (linear_solver_name).
 TEST(IntegrationOptionsFromSpec, LinearSolverChoicesKeepTheirNames) {
   const auto method = [](const std::string& toml, const std::vector<std::string>& overrides) {
     return newton_matrix_options_from_spec(spec_of(toml, overrides)).method;
   };
-  EXPECT_EQ(method("[integration]\nlinear_solver = \"cholmod\"\n", {}), "cholesky");
-  EXPECT_EQ(method("", {"integration.linear_solver=cholmod"}), "cholesky");
-  for (const std::string name : {"cholesky", "mumps", "gmres-gamg", "gmres-asm"})
-    EXPECT_EQ(method("", {"integration.linear_solver=" + name}), name);
+  EXPECT_EQ(method("[integration]\nlinear_solver = \"cholmod\"\n", {}), LinearSolver::cholesky);
+  EXPECT_EQ(method("", {"integration.linear_solver=cholmod"}), LinearSolver::cholesky);
+  const std::pair<std::string, LinearSolver> choices[] = {{"cholesky", LinearSolver::cholesky},
+                                                          {"mumps", LinearSolver::mumps},
+                                                          {"gmres-gamg", LinearSolver::gmres_gamg},
+                                                          {"gmres-asm", LinearSolver::gmres_asm}};
+  for (const auto& [name, solver] : choices) {
+    EXPECT_EQ(method("", {"integration.linear_solver=" + name}), solver) << name;
+    EXPECT_EQ(linear_solver_name(solver), name);
+  }
 }
 
 TEST(IntegrationOptionsFromSpec, SymmetricPreconditionerOnlyWhereTheMatrixPreconditions) {
@@ -71,7 +79,7 @@ TEST(IntegrationOptionsFromSpec, GivenKeysAndOverridesAreUsed) {
   EXPECT_DOUBLE_EQ(*ida.fixed_step, 0.005);
   EXPECT_TRUE(ida.suppress_algebraic_error);
   EXPECT_EQ(ida.max_newton_iterations, 7);
-  EXPECT_EQ(newton_matrix_options_from_spec(spec).method, "gmres-gamg");
+  EXPECT_EQ(newton_matrix_options_from_spec(spec).method, LinearSolver::gmres_gamg);
   EXPECT_EQ(ida.newton, NewtonMethod::modified);
   EXPECT_DOUBLE_EQ(spec.pressure_absolute_tolerance_pa, 0.5);
   EXPECT_THROW(spec_of("[integration]\nlinear_solver = \"pardiso\"\n"), CaseError);

@@ -435,7 +435,7 @@ TEST(NewtonMatrixFactor, IndefiniteMatrixFallsBackToLuAndSkipsCholeskyForThreeSe
   Mat spd = grid_matrix(9.0, 0.0), indefinite = grid_matrix(1.0, 0.0);
   const std::vector<char> prescribed = prescribe_rows(spd);
   prescribe_rows(indefinite);
-  NewtonMatrixFactor factor(prescribed, {.method = "cholesky"});
+  NewtonMatrixFactor factor(prescribed, {.method = LinearSolver::cholesky});
   Vec b = right_hand_side();
   const auto solve_error = [&](Mat A) {
     Vec x = nullptr, reference = lu_solve(A, b);
@@ -462,7 +462,6 @@ TEST(NewtonMatrixFactor, IndefiniteMatrixFallsBackToLuAndSkipsCholeskyForThreeSe
   ASSERT_TRUE(factor.factor(spd));
   EXPECT_LT(solve_error(spd), 1e-12);
   expect_counts(3, 4);
-  EXPECT_THROW(NewtonMatrixFactor(prescribed, {.method = "pardiso"}), std::invalid_argument);
   VecDestroy(&b);
   MatDestroy(&indefinite);
   MatDestroy(&spd);
@@ -496,7 +495,7 @@ TEST(NewtonMatrixFactor, AsAShellPreconditionerOfAPetscKsp) {
   const std::vector<char> prescribed = prescribe_rows(A);
   Vec b = right_hand_side(rows_of(A)), reference = lu_solve(A, b), x = nullptr;
   petsc_check(VecDuplicate(b, &x), "VecDuplicate");
-  NewtonMatrixFactor single(prescribed, {.method = "cholesky", .preconditioner_only = true});
+  NewtonMatrixFactor single(prescribed, {.method = LinearSolver::cholesky, .preconditioner_only = true});
   const auto [reason, iterations] = gmres(single, A, b, x);
   const double error = relative_difference(x, reference);
   std::printf("FGMRES with the single-precision LU as a shell preconditioner: %ld iterations, |x - x_MUMPS| / "
@@ -515,7 +514,7 @@ TEST(NewtonMatrixFactor, AsAShellPreconditionerOfAPetscKsp) {
   assemble(singular);
   petsc_check(MatCreateVecs(singular, &x, &b), "MatCreateVecs");
   petsc_check(VecSet(b, 1.0), "VecSet");
-  NewtonMatrixFactor exact(std::vector<char>(3, 0), {.method = "cholesky"});
+  NewtonMatrixFactor exact(std::vector<char>(3, 0), {.method = LinearSolver::cholesky});
   EXPECT_EQ(gmres(exact, singular, b, x).first, KSP_DIVERGED_PC_FAILED);
   for (Vec v : {b, x}) VecDestroy(&v);
   MatDestroy(&singular);

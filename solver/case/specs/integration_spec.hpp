@@ -45,8 +45,8 @@ struct IntegrationSpec {
 // with newton = "krylov".
 IntegrationSpec parse_integration_spec(const Case& c);
 
-// The key's name of the choice ("cholesky", "gmres-gamg", ...): the linear solver's method name
-// (NewtonMatrixOptions::method) and what summary.json reports.
+// The key's name of the choice ("cholesky", "gmres-gamg", ...), for people: what summary.json
+// reports as "linear_solver".
 const char* linear_solver_name(LinearSolver solver);
 
 }  // namespace needlefem
