@@ -338,7 +338,7 @@ class RunPass {
     record_.displacement_dofs = system->displacement_dofs();
     record_.surfaces = reaction_surfaces(mesh, system->dof_map());
     const fields::TissueFieldEvaluator evaluator(*system, mesh, c_.real("output.density_kg_per_m3"));
-    safety_ = std::make_unique<SafetyReport>(c_, mesh, evaluator);
+    safety_ = std::make_unique<SafetyReport>(specs_.thresholds, mesh, evaluator);
 
     std::vector<output::FieldSpec> specs = field_specs();
     if (needle_) for (auto& spec : NeedleOutput::field_specs()) specs.push_back(std::move(spec));

@@ -12,7 +12,8 @@ RunSpecs parse_run_specs(const Case& c) {
           .needle_contact = parse_needle_contact_spec(c),
           .obstacle = parse_obstacle_spec(c),
           .loading = parse_loading_spec(c),
-          .integration = parse_integration_spec(c)};
+          .integration = parse_integration_spec(c),
+          .thresholds = parse_thresholds_spec(c)};
 }
 
 bool needle_in_contact(const RunSpecs& specs) {

@@ -1,7 +1,7 @@
 // The case parsed once into the specs of the stages a run goes through (run_case.cpp; `needlefem
 // mesh` shows its scene, load_run_scene): each stage gets its own spec rather than the case and
-// its keys. Keys no spec covers yet (the needle's tip, meshing, outputs, safety limits) are still
-// read from the Case where they are used.
+// its keys. Keys no spec covers yet (the needle's tip, meshing, outputs) are still read from the
+// Case where they are used.
 #pragma once
 
 #include "case/specs/contact_spec.hpp"
@@ -9,6 +9,7 @@
 #include "case/specs/loading_spec.hpp"
 #include "case/specs/mechanics_spec.hpp"
 #include "case/specs/scene_kind.hpp"
+#include "case/specs/thresholds_spec.hpp"
 
 namespace needlefem {
 class Case;
@@ -27,6 +28,7 @@ struct RunSpecs {
   ObstacleSpec obstacle;
   LoadingSpec loading;
   IntegrationSpec integration;
+  ThresholdsSpec thresholds;
 };
 
 // Throws the CaseErrors of the stages' parsers.

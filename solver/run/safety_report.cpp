@@ -5,8 +5,8 @@
 
 #include <fmt/core.h>
 
-#include "case/case.hpp"
 #include "case/mesh_resolution.hpp"
+#include "case/specs/thresholds_spec.hpp"
 
 namespace needlefem::run {
 
@@ -15,10 +15,12 @@ namespace {
 constexpr double kMmPerM = 1e3;
 constexpr const char* kCavity = "cavity";
 
-// The limits (case key thresholds.<name>) and what each judges, in the words of summary.json and
-// of the verdict line; values are shown in `unit` (the field's SI value times `scale`).
+// The limits (case key thresholds.<name>, ThresholdsSpec::*limit) and what each judges, in the
+// words of summary.json and of the verdict line; values are shown in `unit` (the field's SI value
+// times `scale`).
 struct LimitText {
   const char* name;
+  double ThresholdsSpec::*limit;
   int field;  // fields::ScalarQuantity
   const char* label;
   const char* quantity;
@@ -27,9 +29,9 @@ struct LimitText {
   bool windowed;  // judged over thresholds.strain_rate_window_s
 };
 constexpr LimitText kLimitText[] = {
-    {"log_strain", fields::kLogStrain, "max principal log strain",
+    {"log_strain", &ThresholdsSpec::log_strain, fields::kLogStrain, "max principal log strain",
      "max principal logarithmic strain, ln of the largest principal stretch", "", 1.0, false},
-    {"strain_rate_per_s", fields::kStrainRate, "max principal strain rate",
+    {"strain_rate_per_s", &ThresholdsSpec::strain_rate_per_s, fields::kStrainRate, "max principal strain rate",
      "max principal strain rate (1/s) sustained over window_s: ln of the largest principal stretch of the "
      "deformation over the window before t (F(t) F(t - window_s)^-1), divided by window_s, judged at the output "
      "times and at accepted steps a quarter window apart between them; for a steady stretching it is the largest "
@@ -39,8 +41,8 @@ constexpr LimitText kLimitText[] = {
      "max.equivalent_strain_rate_per_s, sqrt(2/3 D:D), counts shear too (2/sqrt(3) times larger in simple shear) "
      "and is reported, not judged",
      "1/s", 1.0, true},
-    {"stress_pa", fields::kVonMises, "von Mises stress", "von Mises (equivalent) Cauchy stress, Pa", "kPa", 1e-3,
-     false}};
+    {"stress_pa", &ThresholdsSpec::stress_pa, fields::kVonMises, "von Mises stress",
+     "von Mises (equivalent) Cauchy stress, Pa", "kPa", 1e-3, false}};
 // The windowed limit's other critical-distance values (window_variants_), in summary.json.
 enum WindowVariant { kHalfWindow, kDoubleWindow, kInstantaneous };
 constexpr const char* kWindowVariantNames[] = {"critical_distance_half_window", "critical_distance_double_window",
@@ -94,19 +96,20 @@ nlohmann::json MaximumOverTime::to_json(const char* position_name) const {
   return {{"value", value}, {"time_s", time_s}, {position_name, millimetres(position)}};
 }
 
-SafetyReport::SafetyReport(const Case& c, const TetMesh& mesh, const fields::TissueFieldEvaluator& evaluator)
-    : radius_mm_(c.real("thresholds.critical_distance_mm")),
-      percentile_(c.real("thresholds.percentile")),
-      region_mm_(c.real("thresholds.region_mm")),
+SafetyReport::SafetyReport(const ThresholdsSpec& thresholds, const TetMesh& mesh,
+                           const fields::TissueFieldEvaluator& evaluator)
+    : radius_mm_(thresholds.critical_distance_mm),
+      percentile_(thresholds.percentile),
+      region_mm_(thresholds.region_mm),
       positions_(evaluator.point_positions()),
       volumes_(evaluator.point_volumes()),
       evaluator_(evaluator),
-      window_s_(c.real("thresholds.strain_rate_window_s")),
+      window_s_(thresholds.strain_rate_window_s),
       window_(2.0 * window_s_, window_s_ / 4.0),
       now_(std::size(kLimitText)),
       over_time_(std::size(kLimitText)) {
   for (const LimitText& text : kLimitText)
-    limits_.push_back({text.name, text.field, c.real(std::string("thresholds.") + text.name), text.windowed});
+    limits_.push_back({text.name, text.field, thresholds.*text.limit, text.windowed});
   const double radius = radius_mm_ / kMmPerM;
   const std::vector<fields::Tetrahedron> tissue = evaluator.tissue_tetrahedra();
   ball_ = std::make_unique<fields::BallAverager>(positions_, volumes_, tissue, radius);

@@ -43,7 +43,7 @@
 #include "physics/fields/tissue_fields.hpp"
 
 namespace needlefem {
-class Case;
+struct ThresholdsSpec;
 }
 
 namespace needlefem::run {
@@ -61,9 +61,9 @@ struct MaximumOverTime {
 
 class SafetyReport {
  public:
-  // `evaluator` gives the tissue's quadrature points and their deformation gradients (it must
-  // outlive the report); `mesh` its cavity surface.
-  SafetyReport(const Case& c, const TetMesh& mesh, const fields::TissueFieldEvaluator& evaluator);
+  // `thresholds` gives the limits and the metrics' settings; `evaluator` the tissue's quadrature
+  // points and their deformation gradients (it must outlive the report); `mesh` its cavity surface.
+  SafetyReport(const ThresholdsSpec& thresholds, const TetMesh& mesh, const fields::TissueFieldEvaluator& evaluator);
 
   // After an accepted step at t between output times, state y: when a quarter of the strain-rate
   // window has passed since the last, keeps the deformation gradient and judges the windowed rate.

@@ -3,11 +3,14 @@
 
 #include <regex>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "case/case.hpp"
 #include "case/schema.hpp"
+#include "case/specs/thresholds_spec.hpp"
 
 using needlefem::Case;
 using needlefem::CaseError;
@@ -217,4 +220,29 @@ TEST(EnvironmentOverrides, ApplyAfterSetAndNameThemselvesInErrors) {
                           "(did you mean 'tissue.core_element_mm'?)");
   ASSERT_EQ(unsetenv(needlefem::kEnvironmentOverrides), 0);
   EXPECT_EQ(Case::parse("", "a.toml").real("tissue.core_element_mm"), 0.4);
+}
+
+// Each [thresholds] key reaches its own field of ThresholdsSpec: the schema's default where the case
+// does not give the key, else the given value (distinct values, so that no two fields swap keys).
+TEST(ThresholdsSpec, EachKeyReachesItsOwnFieldWithTheSchemasDefault) {
+  using needlefem::ThresholdsSpec;
+  const std::pair<std::string, double ThresholdsSpec::*> fields[] = {
+      {"log_strain", &ThresholdsSpec::log_strain},
+      {"strain_rate_per_s", &ThresholdsSpec::strain_rate_per_s},
+      {"stress_pa", &ThresholdsSpec::stress_pa},
+      {"critical_distance_mm", &ThresholdsSpec::critical_distance_mm},
+      {"strain_rate_window_s", &ThresholdsSpec::strain_rate_window_s},
+      {"percentile", &ThresholdsSpec::percentile},
+      {"region_mm", &ThresholdsSpec::region_mm}};
+  const Case defaults = Case::parse("", "a.toml");
+  const ThresholdsSpec by_default = needlefem::parse_thresholds_spec(defaults);
+  std::vector<std::string> overrides;
+  for (std::size_t i = 0; i < std::size(fields); ++i) {
+    const auto& [name, field] = fields[i];
+    EXPECT_EQ(by_default.*field, defaults.real("thresholds." + name)) << name;
+    overrides.push_back("thresholds." + name + "=" + std::to_string(2 + i));  // inside every key's range
+  }
+  const ThresholdsSpec given = needlefem::parse_thresholds_spec(Case::parse("", "a.toml", overrides));
+  for (std::size_t i = 0; i < std::size(fields); ++i)
+    EXPECT_EQ(given.*fields[i].second, 2.0 + i) << fields[i].first;
 }
