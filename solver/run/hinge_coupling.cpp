@@ -186,7 +186,7 @@ nlohmann::json run_hinged_case(const Case& c, const RunSpecs& specs, const RunOp
                                const RunPass& run_pass) {
   const steering::SteeringSetup setup = steering::steering_setup_from_case(c);
   const double stiffness = setup.model.hinge.hinge_stiffness_n_m_per_rad();
-  const std::vector<double> times = output_times(c, specs.loading);
+  const std::vector<double> times = output_times(specs.output, specs.loading);
   std::vector<Pull> pulls;
   for (double t : times) pulls.push_back(pull_at(c, setup, t));
   if (pulls.front().eq27_case_rad > kLargestStartTilt)

@@ -2,7 +2,6 @@
 
 #include <fmt/core.h>
 
-#include "case/case.hpp"
 #include "integration/petsc_arrays.hpp"
 #include "physics/contact/scene_obstacle.hpp"
 #include "physics/mechanics/mechanics_system.hpp"
@@ -26,14 +25,14 @@ MeshSceneLoads::MeshSceneLoads(const Case& input, const RunSpecs& specs, const T
                                const contact::ContactParameters& contact_parameters)
     : system_(system),
       history_(mechanics::LoadHistory::from_spec(specs.loading)),
-      pressure_pa_(input.real("pressure.value_pa")),
-      pressure_(!input.texts("groups.pressure").empty()),
+      pressure_pa_(specs.pressure.value_pa),
+      pressure_(!specs.pressure.groups.empty()),
       contact_(contact::scene_obstacle_contact(input, specs.obstacle, contact_parameters, mesh)) {
   if (pressure_)
     system.add_surface_load(std::make_shared<mechanics::SurfacePressure>(
-        mesh, input.texts("groups.pressure"),
+        mesh, specs.pressure.groups,
         [history = history_, p = pressure_pa_](double t) { return history.factor(t) * p; },
-        input.flag("pressure.follower")));
+        specs.pressure.follower));
   if (contact_) system.add_surface_load(contact_);
 }
 

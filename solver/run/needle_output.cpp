@@ -10,6 +10,7 @@
 #include <fmt/core.h>
 
 #include "case/case.hpp"
+#include "case/specs/contact_spec.hpp"
 #include "integration/petsc_arrays.hpp"
 #include "physics/mechanics/mechanics_system.hpp"
 
@@ -30,34 +31,36 @@ double largest_magnitude(const std::vector<double>& values) {
 
 }  // namespace
 
-std::unique_ptr<NeedleOutput> NeedleOutput::attach(const Case& input, const TetMesh& mesh,
+std::unique_ptr<NeedleOutput> NeedleOutput::attach(const NeedleContactSpec& spec, const TetMesh& mesh,
                                                    mechanics::MechanicsSystem& system,
                                                    const contact::ContactParameters& contact_parameters,
                                                    std::shared_ptr<const contact::Needle> needle) {
   if (!needle) return nullptr;
-  return std::make_unique<NeedleOutput>(input, mesh, system, contact_parameters, std::move(needle));
+  return std::make_unique<NeedleOutput>(spec, mesh, system, contact_parameters, std::move(needle));
 }
 
-NeedleOutput::NeedleOutput(const Case& input, const TetMesh& mesh, mechanics::MechanicsSystem& system,
+NeedleOutput::NeedleOutput(const NeedleContactSpec& spec, const TetMesh& mesh, mechanics::MechanicsSystem& system,
                            const contact::ContactParameters& contact_parameters,
                            std::shared_ptr<const contact::Needle> needle)
     : system_(system),
       contact_(contact_parameters, mesh, std::move(needle)),
       initial_gap_(contact_.initial_gap()) {
   system.add_surface_load(contact_.surface_load());
-  if (!input.flag("needle.deflection_check")) return;
+  const NeedleDeflectionCheckSpec& check = spec.deflection_check;
+  if (!check.enabled) return;
   if (contact_.hinged_needle())
-    throw input.error("needle.deflection_check", "the compliant tip's neck is the hinge spring of its head "
-                                                 "(run/hinge_coupling.hpp); the check is for rigid tips");
-  youngs_modulus_pa_ = input.real("needle.youngs_modulus_gpa") * kPaPerGpa;
-  poisson_ratio_ = input.real("needle.poisson_ratio");
+    throw case_error(spec.origin, "needle.deflection_check",
+                     "the compliant tip's neck is the hinge spring of its head (run/hinge_coupling.hpp); the check is "
+                     "for rigid tips");
+  youngs_modulus_pa_ = check.youngs_modulus_gpa * kPaPerGpa;
+  poisson_ratio_ = check.poisson_ratio;
   const NeedleMotion& motion = contact_.needle().motion();
   needle_travel_m_ = std::abs(motion.insertion_speed) * motion.elapsed(motion.duration);
   const auto start = std::chrono::steady_clock::now();
   try {
     elasticity_ = std::make_unique<contact::NeedleElasticity>(mesh, youngs_modulus_pa_, poisson_ratio_);
   } catch (const std::runtime_error& e) {
-    throw input.error("needle.deflection_check", e.what());
+    throw case_error(spec.origin, "needle.deflection_check", e.what());
   }
   elasticity_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   deflection_check_ = true;

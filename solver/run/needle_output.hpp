@@ -36,7 +36,7 @@
 #include "physics/contact/needle_elasticity.hpp"
 
 namespace needlefem {
-class Case;
+struct NeedleContactSpec;
 }
 namespace needlefem::mechanics {
 class MechanicsSystem;
@@ -48,14 +48,13 @@ class NeedleOutput {
  public:
   // nullptr without a needle (needle contact off for this case); otherwise builds the contact with
   // `needle` by the [contact] law `contact_parameters` (run_contact_parameters) and adds it to
-  // `system` (both `mesh` and `system` must outlive the result). Takes the Case for the
-  // needle.deflection_check keys.
-  static std::unique_ptr<NeedleOutput> attach(const Case& input, const TetMesh& mesh,
+  // `system` (both `mesh` and `system` must outlive the result), with `spec`'s deflection check.
+  static std::unique_ptr<NeedleOutput> attach(const NeedleContactSpec& spec, const TetMesh& mesh,
                                               mechanics::MechanicsSystem& system,
                                               const contact::ContactParameters& contact_parameters,
                                               std::shared_ptr<const contact::Needle> needle);
 
-  NeedleOutput(const Case& input, const TetMesh& mesh, mechanics::MechanicsSystem& system,
+  NeedleOutput(const NeedleContactSpec& spec, const TetMesh& mesh, mechanics::MechanicsSystem& system,
                const contact::ContactParameters& contact_parameters, std::shared_ptr<const contact::Needle> needle);
 
   static std::vector<output::FieldSpec> field_specs();

@@ -5,15 +5,12 @@
 #include <vector>
 
 #include "case/specs/loading_spec.hpp"
-
-namespace needlefem {
-class Case;
-}
+#include "case/specs/output_spec.hpp"
 
 namespace needlefem::run {
 
-// Ascending, starting at 0 and ending at mechanics::history_end of `loading`. Throws CaseError
-// (output.interval_s) for more than 1e4 output times. Takes the Case for output.interval_s.
-std::vector<double> output_times(const Case& c, const LoadingSpec& loading);
+// Ascending, starting at 0 and ending at mechanics::history_end of `loading`, every
+// `output`.interval_s. Throws CaseError (output.interval_s) for more than 1e4 output times.
+std::vector<double> output_times(const OutputSpec& output, const LoadingSpec& loading);
 
 }  // namespace needlefem::run

@@ -171,7 +171,7 @@ struct RunRecord {
   double mesh_s = 0.0, integration_s = 0.0, output_s = 0.0;
 };
 
-nlohmann::json summary_json(const Case& c, const IntegrationSpec& integration, const material::Material* material,
+nlohmann::json summary_json(const Case& c, const RunSpecs& specs, const material::Material* material,
                             const SceneModel* scene, const SafetyReport* safety, const RunRecord& record,
                             double wall_s) {
   nlohmann::json s;
@@ -192,7 +192,7 @@ nlohmann::json summary_json(const Case& c, const IntegrationSpec& integration, c
   if (safety) s.update(safety->summary(record.maxima));
   s["reactions_note"] = "force (N) the supports exert on the tissue nodes of each named surface, at time_reached_s";
   s["energy"] = {{"elastic_j", record.elastic_energy_j}, {"max_kinetic_to_elastic_ratio", record.max_kinetic_to_elastic},
-                 {"density_kg_per_m3", c.real("output.density_kg_per_m3")}};
+                 {"density_kg_per_m3", specs.output.density_kg_per_m3}};
   s["solver"] = {{"wall_s", wall_s},
                  {"mesh_s", record.mesh_s},
                  {"integration_s", record.integration_s},
@@ -211,7 +211,7 @@ nlohmann::json summary_json(const Case& c, const IntegrationSpec& integration, c
                                       {"inverted_element_jacobians", record.rejections.inverted_jacobians},
                                       {"failed_factorisations", record.rejections.failed_factorisations},
                                       {"failed_solves", record.rejections.failed_solves}}},
-                 {"linear_solver", linear_solver_name(integration.linear_solver)},
+                 {"linear_solver", linear_solver_name(specs.integration.linear_solver)},
                  {"blas_kernel", openblas_kernel()},
                  {"factorisations", {{"cholesky", record.factorisations.cholesky},
                                      {"lu", record.factorisations.lu},
@@ -325,7 +325,7 @@ class RunPass {
     if (needle && options_.head_tilt) needle = contact::needle_from_case(c_, nullptr, options_.head_tilt);
     const contact::ContactParameters contact_parameters =
         run_contact_parameters(specs_, material_->instantaneous_shear_modulus());
-    needle_ = NeedleOutput::attach(c_, mesh, *system, contact_parameters, std::move(needle));
+    needle_ = NeedleOutput::attach(specs_.needle_contact, mesh, *system, contact_parameters, std::move(needle));
     scene_loads_ = MeshSceneLoads::attach(c_, specs_, mesh, *system, contact_parameters);
     // The needle's PETSc solvers go before the session does, also when the run fails.
     const struct ReleaseNeedleSolvers {
@@ -337,7 +337,7 @@ class RunPass {
     record_.dofs = system->local_size();
     record_.displacement_dofs = system->displacement_dofs();
     record_.surfaces = reaction_surfaces(mesh, system->dof_map());
-    const fields::TissueFieldEvaluator evaluator(*system, mesh, c_.real("output.density_kg_per_m3"));
+    const fields::TissueFieldEvaluator evaluator(*system, mesh, specs_.output.density_kg_per_m3);
     safety_ = std::make_unique<SafetyReport>(specs_.thresholds, mesh, evaluator);
 
     std::vector<output::FieldSpec> specs = field_specs();
@@ -475,7 +475,7 @@ class RunPass {
 
   nlohmann::json summary() const {
     nlohmann::json summary =
-        summary_json(c_, specs_.integration, material_.get(), scene_.get(), safety_.get(), record_, seconds_since(start_));
+        summary_json(c_, specs_, material_.get(), scene_.get(), safety_.get(), record_, seconds_since(start_));
     if (needle_) summary.update(needle_->summary());
     return summary;
   }
@@ -499,7 +499,7 @@ class RunPass {
   const RunSpecs& specs_;
   const RunOptions& options_;
   const Clock::time_point start_ = Clock::now();
-  const std::vector<double> times_ = output_times(c_, specs_.loading);  // its case errors before anything is written
+  const std::vector<double> times_ = output_times(specs_.output, specs_.loading);  // its case errors before anything is written
   RunRecord record_;
   std::unique_ptr<SceneModel> scene_;
   std::unique_ptr<material::Material> material_;

@@ -12,8 +12,10 @@ RunSpecs parse_run_specs(const Case& c) {
           .needle_contact = parse_needle_contact_spec(c),
           .obstacle = parse_obstacle_spec(c),
           .loading = parse_loading_spec(c),
+          .pressure = parse_pressure_spec(c),
           .integration = parse_integration_spec(c),
-          .thresholds = parse_thresholds_spec(c)};
+          .thresholds = parse_thresholds_spec(c),
+          .output = parse_output_spec(c)};
 }
 
 bool needle_in_contact(const RunSpecs& specs) {

@@ -1,6 +1,6 @@
 // The case parsed once into the specs of the stages a run goes through (run_case.cpp; `needlefem
 // mesh` shows its scene, load_run_scene): each stage gets its own spec rather than the case and
-// its keys. Keys no spec covers yet (the needle's tip, meshing, outputs) are still read from the
+// its keys. Keys no spec covers yet (the needle's tip, meshing, steering) are still read from the
 // Case where they are used.
 #pragma once
 
@@ -8,6 +8,8 @@
 #include "case/specs/integration_spec.hpp"
 #include "case/specs/loading_spec.hpp"
 #include "case/specs/mechanics_spec.hpp"
+#include "case/specs/output_spec.hpp"
+#include "case/specs/pressure_spec.hpp"
 #include "case/specs/scene_kind.hpp"
 #include "case/specs/thresholds_spec.hpp"
 
@@ -27,8 +29,10 @@ struct RunSpecs {
   NeedleContactSpec needle_contact;
   ObstacleSpec obstacle;
   LoadingSpec loading;
+  PressureSpec pressure;
   IntegrationSpec integration;
   ThresholdsSpec thresholds;
+  OutputSpec output;
 };
 
 // Throws the CaseErrors of the stages' parsers.

@@ -10,6 +10,9 @@
 
 #include "case/case.hpp"
 #include "case/schema.hpp"
+#include "case/specs/contact_spec.hpp"
+#include "case/specs/output_spec.hpp"
+#include "case/specs/pressure_spec.hpp"
 #include "case/specs/thresholds_spec.hpp"
 
 using needlefem::Case;
@@ -245,4 +248,53 @@ TEST(ThresholdsSpec, EachKeyReachesItsOwnFieldWithTheSchemasDefault) {
   const ThresholdsSpec given = needlefem::parse_thresholds_spec(Case::parse("", "a.toml", overrides));
   for (std::size_t i = 0; i < std::size(fields); ++i)
     EXPECT_EQ(given.*fields[i].second, 2.0 + i) << fields[i].first;
+}
+
+namespace {
+// What `parse` makes of the case that gives no key, and of the case `toml` with `overrides`.
+template <class Parse>
+auto default_and_given_specs(Parse parse, const std::vector<std::string>& overrides, const std::string& toml = "") {
+  return std::pair{parse(Case::parse("", "a.toml")), parse(Case::parse(toml, "a.toml", overrides))};
+}
+}  // namespace
+
+// As for ThresholdsSpec: each key reaches its own field, the schema's default where the case does
+// not give it, else the given value (distinct from the default and from the other fields').
+TEST(OutputSpec, EachKeyReachesItsOwnFieldWithTheSchemasDefault) {
+  const Case defaults = Case::parse("", "a.toml");
+  const auto [by_default, given] = default_and_given_specs(
+      needlefem::parse_output_spec, {"output.interval_s=2", "output.density_kg_per_m3=3"});
+  EXPECT_EQ(by_default.origin, "a.toml");
+  EXPECT_EQ(by_default.interval_s, defaults.real("output.interval_s"));
+  EXPECT_EQ(by_default.density_kg_per_m3, defaults.real("output.density_kg_per_m3"));
+  EXPECT_EQ(given.interval_s, 2.0);
+  EXPECT_EQ(given.density_kg_per_m3, 3.0);
+}
+
+TEST(PressureSpec, EachKeyReachesItsOwnFieldWithTheSchemasDefault) {
+  const Case defaults = Case::parse("", "a.toml");
+  ASSERT_TRUE(defaults.flag("pressure.follower"));  // so that the case below gives another value
+  const auto [by_default, given] = default_and_given_specs(
+      needlefem::parse_pressure_spec, {"pressure.value_pa=2", "pressure.follower=false"},
+      "[groups]\npressure = [\"inner\", \"outer\"]\n");
+  EXPECT_EQ(by_default.groups, defaults.texts("groups.pressure"));
+  EXPECT_EQ(by_default.value_pa, defaults.real("pressure.value_pa"));
+  EXPECT_EQ(by_default.follower, defaults.flag("pressure.follower"));
+  EXPECT_EQ(given.groups, (std::vector<std::string>{"inner", "outer"}));
+  EXPECT_EQ(given.value_pa, 2.0);
+  EXPECT_FALSE(given.follower);
+}
+
+TEST(NeedleContactSpec, EachDeflectionCheckKeyReachesItsOwnFieldWithTheSchemasDefault) {
+  const Case defaults = Case::parse("", "a.toml");
+  ASSERT_FALSE(defaults.flag("needle.deflection_check"));  // so that the case below gives another value
+  const auto [by_default, given] = default_and_given_specs(
+      needlefem::parse_needle_contact_spec,
+      {"needle.deflection_check=true", "needle.youngs_modulus_gpa=2", "needle.poisson_ratio=0.3"});
+  EXPECT_EQ(by_default.deflection_check.enabled, defaults.flag("needle.deflection_check"));
+  EXPECT_EQ(by_default.deflection_check.youngs_modulus_gpa, defaults.real("needle.youngs_modulus_gpa"));
+  EXPECT_EQ(by_default.deflection_check.poisson_ratio, defaults.real("needle.poisson_ratio"));
+  EXPECT_TRUE(given.deflection_check.enabled);
+  EXPECT_EQ(given.deflection_check.youngs_modulus_gpa, 2.0);
+  EXPECT_EQ(given.deflection_check.poisson_ratio, 0.3);
 }

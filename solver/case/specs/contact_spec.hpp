@@ -1,6 +1,7 @@
 // The contact stage's keys, parsed: the [contact] law (physics/contact/penalty_contact.hpp), what
 // the needle in contact reads beyond its tip's shape (needle_contact.hpp; the shape:
-// geometry/needle_tip.hpp), and a mesh scene's obstacle ([obstacle], scene_obstacle.hpp).
+// geometry/needle_tip.hpp) with the check of its deflection under the contact loads
+// (run/needle_output.hpp), and a mesh scene's obstacle ([obstacle], scene_obstacle.hpp).
 // Values are in the units their keys name; the physics converts them to SI.
 #pragma once
 
@@ -35,11 +36,20 @@ struct ContactSpec {
 
 ContactSpec parse_contact_spec(const Case& c);
 
+// needle.deflection_check: the linear-elastic tip under the contact loads
+// (physics/contact/needle_elasticity.hpp), with the needle's elastic constants.
+struct NeedleDeflectionCheckSpec {
+  bool enabled;               // needle.deflection_check
+  double youngs_modulus_gpa;  // needle.youngs_modulus_gpa
+  double poisson_ratio;       // needle.poisson_ratio
+};
+
 struct NeedleContactSpec {
   std::string origin;                     // the case's, for the CaseErrors of rules checked against the mesh
   double edge_radius_um;                  // needle.edge_radius_um
   std::filesystem::path cad_file;         // needle.cad_file, resolved against the case's folder; empty: none
   std::filesystem::path scene_mesh_file;  // scene.mesh_file, resolved; empty: the generated mesh
+  NeedleDeflectionCheckSpec deflection_check;
 };
 
 NeedleContactSpec parse_needle_contact_spec(const Case& c);
