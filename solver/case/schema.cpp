@@ -155,8 +155,8 @@ std::vector<KeySpec> build_schema() {
            "away from curved edges; curved faces and edges follow needle.cad_facet_deg)"),
       real("needle.cad_facet_deg", 0.75, 0.0, 5.0,
            "needle.kind = \"cad\": angle a facet of the contact needle spans on a curved face (facet = radius x "
-           "angle). The normals of neighbouring facets differ by it: on the paper's tip 1.5 deg stalled Newton at "
-           "t = 0.068 s where the tissue slides over them, 0.75 deg ran like the analytic needle (docs/accuracy.md 9)"),
+           "angle). The normals of neighbouring facets differ by it, and the tissue sliding over a coarse one "
+           "stalls Newton (docs/accuracy.md 9)"),
       real("needle.radius_mm", 0.5, 0.0, 100.0, "Needle (shaft and head) radius r"),
       real("needle.bevel_deg", 20.0, 0.0, 90.0,
            "Bevel angle alpha between the bevel plane and the needle axis (ignored when fillet = radius)"),
@@ -169,8 +169,8 @@ std::vector<KeySpec> build_schema() {
            "fillet); CAD tip: of every convex edge. The contact needle is rounded with it (its normal is then continuous where the tissue "
            "presses on an edge) and the mesh is graded to resolve it (element size rho / 2^mesh.refinement_level "
            "on the edges). A ground needle's edge radius is a few to some tens of micrometres; the default is "
-           "the smallest radius with which the penalty contact's Newton iteration ran the default tip on the "
-           "graded mesh (50 stalled in the first millisecond; docs/study.md, Edge radius and mesh grading)"),
+           "the smallest radius with which the penalty contact's Newton iteration runs the default tip on the "
+           "graded mesh (docs/study.md, Edge radius and mesh grading)"),
       real("needle.shaft_mm", 0.1, 0.0, 100.0, "Straight shaft behind the bevel heel (or behind the neck)"),
       real("needle.head_length_mm", 3.5, 0.0, 100.0, "Compliant tip: magnetised head length L (cylinder + cone)"),
       real("needle.neck_length_mm", 1.0, 0.0, 100.0, "Compliant tip: neck (hinge) length l"),
@@ -290,8 +290,7 @@ std::vector<KeySpec> build_schema() {
       real("integration.max_step_s", 0.0, 0.0, 1e6, "Largest step size; 0 means unbounded", false),
       integer("integration.max_newton_iterations", 20, 1, 100,
               "Newton iterations per step attempt before IDA cuts the step (IDA's default is 4; contact's "
-              "stick/slip and open/close kinks need more: frictional brain tip on the 0.8 mm mesh, 4 stalls at "
-              "3 ms, 20 runs on; IDA still cuts at once when the iteration diverges)"),
+              "stick/slip and open/close kinks need more; IDA still cuts at once when the iteration diverges)"),
       choice("integration.newton", "krylov", {"modified", "krylov"},
              "Newton linear solves: 'modified' reuses the factored Newton matrix; 'krylov' runs GMRES on the "
              "current Jacobian (difference quotients) preconditioned by the rarely refreshed factorisation"),
@@ -299,31 +298,28 @@ std::vector<KeySpec> build_schema() {
       integer("integration.krylov_stale_iterations", 20, 1, 500,
               "integration.newton = krylov: GMRES iterations allowed with a Newton matrix factored in an earlier "
               "step (krylov_dimension with a fresh one); at the limit Newton retries with a fresh matrix. Sliding "
-              "friction needs 3-18 iterations with an aged matrix, so a low limit refactors it at most steps; a "
-              "tied cavity (no sliding) does better with 5 (paper001_tied.toml sets it; docs/speed.md)"),
+              "friction ages a matrix, so a low limit refactors it at most steps; a tied cavity (no sliding) "
+              "does better with a low one (docs/speed.md)"),
       real("integration.krylov_aged_matrix_ratio", 2.0, 0.0, 1000.0,
            "integration.newton = krylov: a Newton matrix from an earlier step is refactored at the next step once a "
            "step it served needed more than this many times the GMRES iterations per Newton iteration of the step "
-           "that factored it (0: only when GMRES fails). Sliding friction ages a matrix slowly, and one kept too "
-           "long costs more GMRES iterations than fresh factorisations would (docs/measurements.md, Speed)"),
+           "that factored it (0: only when GMRES fails): a matrix kept too long costs more GMRES iterations "
+           "than fresh factorisations would (docs/measurements.md, Speed)"),
       real("integration.krylov_tolerance", 0.5, 1e-6, 1.0,
            "integration.newton = krylov: GMRES stops when its residual is below this fraction of the Newton "
            "test's tolerance (IDA's epslin). With the default Newton coefficient (0.05) that is 0.025 of the "
            "error-test tolerance, about as tight as IDA's own defaults (0.05 x 0.33). IDA's Newton test looks "
-           "only at the updates, so a much looser solve can end Newton early (a 4x wrong reaction of the "
-           "locking beam at K/mu = 1e5 with 0.25 x 0.33; docs/speed.md)"),
+           "only at the updates, so a much looser solve can end Newton early with a wrong answer (docs/speed.md)"),
       choice("integration.krylov_preconditioner", "exact", {"exact", "symmetric"},
              "integration.newton = krylov: the Newton matrix that preconditions GMRES. 'exact': the matrix itself "
              "(single-precision LU where friction makes it unsymmetric); 'symmetric': Cholesky of the symmetric "
-             "part of the matrix without friction's pressure coupling, half the factor and solve cost, but on most "
-             "meshes that part is still indefinite at some setups and MUMPS LU takes over, which makes the "
-             "default frictional case slower than with 'exact' (docs/speed.md, Experiments)"),
+             "part of the matrix without friction's pressure coupling, half the factor and solve cost; where "
+             "that part is indefinite MUMPS LU takes over (docs/speed.md, Experiments)"),
       real("integration.newton_convergence_coefficient", 0.05, 0.0, 1.0,
            "Newton stops when its error estimate is below this fraction of the error-test tolerance "
            "(IDA's epcon; IDA's own default is 0.33). The strain rate, a safety quantity, comes from IDA's y', "
-           "which carries the Newton error divided by the step: at 0.33 single output times of the frictional "
-           "study read up to 2x high, at 0.05 within 1-3 % of tight runs; 0.01 stalled some study runs in their "
-           "first 0.2 ms (docs/study.md, How far to trust the strain rate)"),
+           "which carries the Newton error divided by the step, so a loose Newton test inflates it and a very "
+           "tight one stalls (docs/study.md, How far to trust the strain rate)"),
       real("integration.newton_matrix_cj_change", 0.9, 0.0, 0.99,
            "Refactor the Newton matrix (or preconditioner) when IDA's cj = alpha/h changed by more than this "
            "fraction (IDA's own default 0.25 suits 'modified' on stiff ODEs; the tissue matrix barely depends on cj)",
@@ -387,8 +383,8 @@ std::vector<KeySpec> build_schema() {
       choice("contact.friction_law", "return-map", {"return-map", "velocity"},
              "return-map: elastic stick up to contact.elastic_slip and radial return to the Coulomb cone, "
              "anchors updated at each accepted step; velocity: t_T = -mu p v_T / "
-             "sqrt(|v_T|^2 + eps_v^2) through IDA's y', which stalls IDA on the brain-tip scene below 1.5 mm "
-             "elements (physics/contact/penalty_contact.hpp)"),
+             "sqrt(|v_T|^2 + eps_v^2) through IDA's y', which stalls IDA on fine brain-tip meshes "
+             "(physics/contact/penalty_contact.hpp)"),
       real("contact.slip_velocity_regularisation_mm_per_s", 1e-2, 0.0, 1e6,
            "Velocity law: eps_v; below the Coulomb limit the interface creeps at ~eps_v instead of sticking "
            "exactly"),
