@@ -15,6 +15,7 @@
 
 #include "app/commands.hpp"
 #include "case/case.hpp"
+#include "case/specs/needle_tip_spec.hpp"
 #include "insertion_force/deformation_energy.hpp"
 #include "insertion_force/force_trajectory.hpp"
 
@@ -26,7 +27,7 @@ insertion::InsertionForceParameters parameters_from_case(const Case& input) {
   if (!input.has("insertion_force.rupture_force_n"))
     throw input.error("insertion_force.rupture_force_n", "needed: the tissue rupture force ending the deformation stage");
   insertion::InsertionForceParameters p;
-  p.needle_radius_m = input.real("needle.radius_mm") * 1e-3;
+  p.needle_radius_m = parse_needle_tip_spec(input).radius_mm * 1e-3;
   p.fracture_toughness_j_per_m2 = input.real("insertion_force.fracture_toughness_j_per_m2");
   p.rupture_force_n = input.real("insertion_force.rupture_force_n");
   p.shaft_friction_n_per_m = input.real("insertion_force.shaft_friction_n_per_mm") * 1e3;

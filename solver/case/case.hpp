@@ -12,17 +12,9 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "case/case_error.hpp"
+
 namespace needlefem {
-
-// One-line, user-facing input error: "FILE: key 'a.b': reason".
-class CaseError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
-
-// A CaseError "ORIGIN: key 'KEY': REASON": Case::error's message, for the rules checked where a
-// spec's values are used (case/specs/), which know the case's origin but not the Case.
-CaseError case_error(const std::string& origin, const std::string& key, const std::string& reason);
 
 // The text of an input file the user named (`what`: "case file", "sweep file"). Refuses with a
 // CaseError "FILE: REASON" a path that cannot be opened, a directory, or a file holding nothing

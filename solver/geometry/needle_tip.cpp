@@ -6,7 +6,7 @@
 
 #include <fmt/format.h>
 
-#include "case/case.hpp"
+#include "case/case_error.hpp"
 
 namespace needlefem {
 
@@ -139,33 +139,35 @@ std::string NeedleTip::describe() const {
                      bevel.bevel_rad * 180 / kPi, mm(bevel.fillet));
 }
 
-NeedleTip needle_tip_from_case(const Case& c) {
+NeedleTip needle_tip_from_spec(const NeedleTipSpec& spec) {
   NeedleTip tip;
   const double m = 1.0 / kMmPerM;
-  if (c.text("needle.kind") == "cad") {
-    tip.kind = NeedleTip::Kind::Cad;
-    tip.cad_file = c.path("needle.cad_file").string();
-  } else if (c.text("needle.kind") == "compliant") {
-    tip.kind = NeedleTip::Kind::Compliant;
-    tip.compliant = {c.real("needle.radius_mm") * m,         c.real("needle.shaft_mm") * m,
-                     c.real("needle.neck_length_mm") * m,    c.real("needle.neck_diameter_mm") * m,
-                     c.real("needle.head_length_mm") * m,    c.real("needle.point_length_mm") * m};
-  } else {
-    tip.bevel = {c.real("needle.radius_mm") * m, c.real("needle.bevel_deg") * kPi / 180,
-                 c.real("needle.fillet_mm") * m, c.real("needle.shaft_mm") * m};
+  switch (spec.kind) {
+    case NeedleKind::cad:
+      tip.kind = NeedleTip::Kind::Cad;
+      tip.cad_file = spec.cad_file.string();
+      break;
+    case NeedleKind::compliant:
+      tip.kind = NeedleTip::Kind::Compliant;
+      tip.compliant = {spec.radius_mm * m,      spec.shaft_mm * m,         spec.neck_length_mm * m,
+                       spec.neck_diameter_mm * m, spec.head_length_mm * m, spec.point_length_mm * m};
+      break;
+    case NeedleKind::bevel:
+      tip.bevel = {spec.radius_mm * m, spec.bevel_deg * kPi / 180, spec.fillet_mm * m, spec.shaft_mm * m};
+      break;
   }
   return tip;
 }
 
-std::vector<RuleViolation> brain_tip_scene_violations(const Case& c, const NeedleTip& tip) {
+std::vector<RuleViolation> brain_tip_scene_violations(const TissueCubeSpec& tissue, const NeedleTip& tip) {
   std::vector<RuleViolation> out = tip.violations();
-  const double edge = c.real("tissue.cube_edge_mm") / kMmPerM;
-  const double core = c.real("tissue.core_width_mm") / kMmPerM;
-  const double core_element = c.real("tissue.core_element_mm") / kMmPerM;
-  if (c.real("tissue.core_element_mm") > c.real("tissue.outer_element_mm"))
+  const double edge = tissue.cube_edge_mm / kMmPerM;
+  const double core = tissue.core_width_mm / kMmPerM;
+  const double core_element = tissue.core_element_mm / kMmPerM;
+  if (tissue.core_element_mm > tissue.outer_element_mm)
     out.push_back({"core-finer-than-outside",
                    fmt::format("core element size {} exceeds the outer element size {}", mm(core_element),
-                               mm(c.real("tissue.outer_element_mm") / kMmPerM)),
+                               mm(tissue.outer_element_mm / kMmPerM)),
                    "tissue.core_element_mm"});
   if (core >= edge)
     out.push_back({"core-inside-cube",
@@ -183,14 +185,13 @@ std::vector<RuleViolation> brain_tip_scene_violations(const Case& c, const Needl
   return out;
 }
 
-void require_valid_scene(const Case& c) {
-  if (c.text("scene.kind") != "brain-tip" || !c.path("scene.mesh_file").empty()) return;
-  const auto violations = brain_tip_scene_violations(c, needle_tip_from_case(c));
+void require_valid_brain_tip_scene(const NeedleTipSpec& tip, const TissueCubeSpec& tissue) {
+  const auto violations = brain_tip_scene_violations(tissue, needle_tip_from_spec(tip));
   if (violations.empty()) return;
   std::string reasons;
   for (const auto& v : violations) reasons += fmt::format("{}rule '{}': {}", reasons.empty() ? "" : "; ", v.rule, v.message);
   // Under the key of the first rule broken (a tissue rule names its tissue key, not `needle`).
-  throw c.error(violations.front().key, "impossible geometry: " + reasons);
+  throw case_error(tip.origin, violations.front().key, "impossible geometry: " + reasons);
 }
 
 }  // namespace needlefem

@@ -17,9 +17,9 @@
 #include <string>
 #include <vector>
 
-namespace needlefem {
+#include "case/specs/needle_tip_spec.hpp"
 
-class Case;
+namespace needlefem {
 
 // A violated geometric validity rule: its stable name, a sentence with the numbers, and the case
 // key (or table) the rule is about, under which an error reports it.
@@ -71,12 +71,14 @@ struct NeedleTip {
   std::string describe() const;
 };
 
-NeedleTip needle_tip_from_case(const Case& c);
+// The case's tip (parse_needle_tip_spec) in SI units.
+NeedleTip needle_tip_from_spec(const NeedleTipSpec& spec);
 
 // Rules of the brain-tip scene as a whole: the tip against the cube and its refined core.
-std::vector<RuleViolation> brain_tip_scene_violations(const Case& c, const NeedleTip& tip);
+std::vector<RuleViolation> brain_tip_scene_violations(const TissueCubeSpec& tissue, const NeedleTip& tip);
 
-// Throws CaseError listing every violated rule of the scene described by the case.
-void require_valid_scene(const Case& c);
+// Throws CaseError (the tip spec's origin) listing every violated rule of the brain-tip scene of
+// `tip` in `tissue`, under the key of the first rule broken.
+void require_valid_brain_tip_scene(const NeedleTipSpec& tip, const TissueCubeSpec& tissue);
 
 }  // namespace needlefem

@@ -9,7 +9,7 @@
 #include <fmt/core.h>
 #include <gmsh.h>
 
-#include "case/case.hpp"
+#include "case/case_error.hpp"
 #include "mesh/gmsh_session.hpp"
 
 namespace needlefem {
@@ -33,13 +33,18 @@ Box bounding_box(int dim, int tag) {
   return b;
 }
 
+// A broken rule of the CAD tip, reported under needle.cad_file.
+CaseError cad_file_error(const NeedleTipSpec& spec, const std::string& reason) {
+  return case_error(spec.origin, "needle.cad_file", reason);
+}
+
 }  // namespace
 
-int import_cad_tip(const Case& c) {
-  const std::filesystem::path file = c.path("needle.cad_file");
+int import_cad_tip(const NeedleTipSpec& spec, const TissueCubeSpec& tissue) {
+  const std::filesystem::path& file = spec.cad_file;
   const std::string name = file.string();
-  if (name.empty()) throw c.error("needle.cad_file", "needle.kind = \"cad\" needs a CAD file (STEP, BREP or .geo)");
-  if (!std::filesystem::is_regular_file(file)) throw c.error("needle.cad_file", fmt::format("'{}': no such file", name));
+  if (name.empty()) throw cad_file_error(spec, "needle.kind = \"cad\" needs a CAD file (STEP, BREP or .geo)");
+  if (!std::filesystem::is_regular_file(file)) throw cad_file_error(spec, fmt::format("'{}': no such file", name));
   gmsh::vectorpair before;
   gmsh::model::getEntities(before, 3);
   try {
@@ -53,7 +58,7 @@ int import_cad_tip(const Case& c) {
     }
     occ::synchronize();
   } catch (const std::string& message) {
-    throw c.error("needle.cad_file", fmt::format("'{}': gmsh cannot read it: {}", name, message));
+    throw cad_file_error(spec, fmt::format("'{}': gmsh cannot read it: {}", name, message));
   }
   gmsh::vectorpair after;
   gmsh::model::getEntities(after, 3);
@@ -61,15 +66,15 @@ int import_cad_tip(const Case& c) {
   for (const auto& [dim, tag] : after)
     if (std::find(before.begin(), before.end(), std::make_pair(dim, tag)) == before.end()) volumes.push_back(tag);
   if (volumes.size() != 1)
-    throw c.error("needle.cad_file",
-                  fmt::format("'{}' holds {} solids: the tip must be one closed solid{}", name, volumes.size(),
-                              volumes.empty() ? " (open faces or a shell are not closed)" : ""));
+    throw cad_file_error(spec, fmt::format("'{}' holds {} solids: the tip must be one closed solid{}", name,
+                                           volumes.size(),
+                                           volumes.empty() ? " (open faces or a shell are not closed)" : ""));
   const int tip = volumes.front();
   const Box b = bounding_box(3, tip);
-  const double edge = c.real("tissue.cube_edge_mm"), core = c.real("tissue.core_width_mm");
+  const double edge = tissue.cube_edge_mm, core = tissue.core_width_mm;
   if (std::abs(b.z0) > kFlushMm)
-    throw c.error("needle.cad_file", fmt::format("'{}': the rear face is not flush with the entry face: the solid "
-                                                 "starts at z = {:.4g} mm, not 0", name, b.z0));
+    throw cad_file_error(spec, fmt::format("'{}': the rear face is not flush with the entry face: the solid "
+                                           "starts at z = {:.4g} mm, not 0", name, b.z0));
   gmsh::vectorpair faces;
   gmsh::model::getBoundary({{3, tip}}, faces, false, false);
   const bool rear = std::any_of(faces.begin(), faces.end(), [](const auto& f) {
@@ -77,31 +82,31 @@ int import_cad_tip(const Case& c) {
     return std::abs(s.z0) <= kFlushMm && std::abs(s.z1) <= kFlushMm;
   });
   if (!rear)
-    throw c.error("needle.cad_file", fmt::format("'{}': no planar rear face on z = 0 (flush with the entry face)", name));
+    throw cad_file_error(spec, fmt::format("'{}': no planar rear face on z = 0 (flush with the entry face)", name));
   const double reach = std::max({std::abs(b.x0), std::abs(b.x1), std::abs(b.y0), std::abs(b.y1)});
   if (reach >= core / 2)
-    throw c.error("needle.cad_file", fmt::format("'{}': the tip does not fit the core: it reaches {:.4g} mm from the "
-                                                 "axis, half of tissue.core_width_mm is {:.4g} mm", name, reach, core / 2));
-  if (b.z1 + c.real("tissue.core_element_mm") > edge)
-    throw c.error("needle.cad_file", fmt::format("'{}': the tip does not fit the cube: it is {:.4g} mm long; with one "
-                                                 "core element ({:.4g} mm) ahead of it it does not fit the {:.4g} mm cube",
-                                                 name, b.z1, c.real("tissue.core_element_mm"), edge));
+    throw cad_file_error(spec, fmt::format("'{}': the tip does not fit the core: it reaches {:.4g} mm from the "
+                                           "axis, half of tissue.core_width_mm is {:.4g} mm", name, reach, core / 2));
+  if (b.z1 + tissue.core_element_mm > edge)
+    throw cad_file_error(spec, fmt::format("'{}': the tip does not fit the cube: it is {:.4g} mm long; with one "
+                                           "core element ({:.4g} mm) ahead of it it does not fit the {:.4g} mm cube",
+                                           name, b.z1, tissue.core_element_mm, edge));
   return tip;
 }
 
-CadTipTriangulation triangulate_cad_tip(const Case& c) {
+CadTipTriangulation triangulate_cad_tip(const NeedleTipSpec& spec, const TissueCubeSpec& tissue) {
   CadTipTriangulation out;
   GmshSession::on_fresh_thread([&] {
     GmshSession session("needlefem-cad-tip");
     GmshSession::guarded([&] {
-      const int tip = import_cad_tip(c);
+      const int tip = import_cad_tip(spec, tissue);
       double volume_mm3 = 0;
       occ::getMass(3, tip, volume_mm3);
       out.cad_volume_m3 = volume_mm3 / std::pow(kMmPerM, 3);
-      const double facet = c.real("needle.cad_facet_um") / kMmPerM;
+      const double facet = spec.cad_facet_um / kMmPerM;
       gmsh::option::setNumber("Mesh.MeshSizeMax", facet);
       gmsh::option::setNumber("Mesh.MeshSizeMin", 0.0);
-      gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", std::ceil(360.0 / c.real("needle.cad_facet_deg")));
+      gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", std::ceil(360.0 / spec.cad_facet_deg));
       // Sizes extend from the boundary curves into the faces: where a flat face's facets meet a curved
       // edge, the trimmed core's edge (cad_needle.hpp) is their chord, off the curved edge by s²/(8R);
       // a run with 50 µm facets inside the bevel face (sizes not extended) stalled at t = 0.08 s on

@@ -15,14 +15,14 @@
 #include <string>
 #include <vector>
 
+#include "case/specs/needle_tip_spec.hpp"
+
 namespace needlefem {
 
-class Case;
-
-// Loads the case's CAD tip into the current gmsh model (inside a GmshSession), checks the rules
-// and returns the tip's volume tag (synchronised). Throws CaseError for a broken rule or a file
-// gmsh cannot read.
-int import_cad_tip(const Case& c);
+// Loads the CAD tip of `spec` (parse_needle_tip_spec) into the current gmsh model (inside a
+// GmshSession), checks the rules against `tissue` and returns the tip's volume tag
+// (synchronised). Throws CaseError for a broken rule or a file gmsh cannot read.
+int import_cad_tip(const NeedleTipSpec& spec, const TissueCubeSpec& tissue);
 
 struct CadTipTriangulation {
   std::vector<std::array<double, 3>> vertices;  // m
@@ -33,6 +33,6 @@ struct CadTipTriangulation {
 // The tip's boundary triangulated with facets spanning at most needle.cad_facet_deg on curved
 // faces and edges, the sizes extended from the edges into the faces, at most needle.cad_facet_um
 // (own gmsh session).
-CadTipTriangulation triangulate_cad_tip(const Case& c);
+CadTipTriangulation triangulate_cad_tip(const NeedleTipSpec& spec, const TissueCubeSpec& tissue);
 
 }  // namespace needlefem

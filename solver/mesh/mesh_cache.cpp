@@ -29,7 +29,7 @@ namespace fs = std::filesystem;
 namespace {
 
 // Every case key the scene mesher reads (scene_mesher.cpp, size_field.cpp, cad_tip.cpp's import_cad_tip and
-// geometry/needle_tip's needle_tip_from_case and scene rules). A key the mesher starts to read
+// case/specs/needle_tip_spec.cpp's parse_needle_tip_spec and the scene rules). A key the mesher starts to read
 // must be added here, or a changed value would find the mesh of the old one.
 // scene.mesh_file and needle.export_file bypass the cache; needle.cad_file is keyed by its bytes.
 constexpr const char* kMeshKeys[] = {

@@ -105,10 +105,10 @@ int add_compliant_tip(const CompliantTip& tip) {
   return out[0].second;
 }
 
-int add_needle_tip(const Case& c, const NeedleTip& tip) {
+int add_needle_tip(const NeedleTip& tip, const NeedleTipSpec& spec, const TissueCubeSpec& tissue) {
   const int needle = tip.kind == NeedleTip::Kind::Bevel       ? add_bevel_tip(tip.bevel)
                      : tip.kind == NeedleTip::Kind::Compliant ? add_compliant_tip(tip.compliant)
-                                                              : import_cad_tip(c);
+                                                              : import_cad_tip(spec, tissue);
   occ::synchronize();
   return needle;
 }
@@ -322,15 +322,17 @@ std::map<std::string, std::vector<int>> add_scene_groups(const Case& c, double e
 }
 
 SceneMeshInfo mesh_brain_tip(const Case& c, const std::filesystem::path& msh_file) {
-  const NeedleTip tip = needle_tip_from_case(c);
-  const double edge = c.real("tissue.cube_edge_mm"), core = c.real("tissue.core_width_mm");
+  const NeedleTipSpec tip_spec = parse_needle_tip_spec(c);
+  const TissueCubeSpec tissue = parse_tissue_cube_spec(c);
+  const NeedleTip tip = needle_tip_from_spec(tip_spec);
+  const double edge = tissue.cube_edge_mm, core = tissue.core_width_mm;
   SceneMeshInfo info;
   info.grading.refinement_level = static_cast<int>(c.integer("mesh.refinement_level"));
   info.needle_description = tip.describe();
   info.needle_analytic_volume_m3 = tip.analytic_volume();
   info.domain_volume_m3 = std::pow(edge / kMmPerM, 3);
 
-  const int needle = add_needle_tip(c, tip);
+  const int needle = add_needle_tip(tip, tip_spec, tissue);
   double cad_volume_mm3 = 0;
   occ::getMass(3, needle, cad_volume_mm3);
   info.needle_cad_volume_m3 = cad_volume_mm3 / std::pow(kMmPerM, 3);
@@ -405,7 +407,8 @@ SceneMeshInfo mesh_user_geometry(const Case& c, const std::filesystem::path& msh
 }  // namespace
 
 SceneMeshInfo generate_scene_mesh(const Case& c, const std::filesystem::path& msh_file, std::FILE* progress) {
-  require_valid_scene(c);
+  if (generates_brain_tip_scene(c))
+    require_valid_brain_tip_scene(parse_needle_tip_spec(c), parse_tissue_cube_spec(c));
   if (progress) {
     fmt::print(progress, "mesh: meshing the {} scene with gmsh (mesh.refinement_level {})\n", c.text("scene.kind"),
                c.integer("mesh.refinement_level"));

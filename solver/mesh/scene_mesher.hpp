@@ -21,6 +21,8 @@ namespace needlefem {
 class Case;
 struct CompliantTip;
 struct NeedleTip;
+struct NeedleTipSpec;
+struct TissueCubeSpec;
 
 // Sizes of the tissue elements next to the needle, each the mean edge length of a tet
 // (corner nodes), over the tissue tets with a corner on the given entities (millimetres).
@@ -75,8 +77,9 @@ SceneMeshInfo generate_scene_mesh(const Case& c, const std::filesystem::path& ms
 // adds paper 000's compliant tip (millimetres, axis +z, rear face z = 0) to the current model as
 // one OpenCASCADE solid and returns its volume tag (call occ::synchronize() after);
 int add_compliant_tip(const CompliantTip& tip);
-// adds the case's needle tip of any kind (a CAD tip checked: mesh/cad_tip.hpp), synchronised;
-int add_needle_tip(const Case& c, const NeedleTip& tip);
+// adds the case's needle tip `tip` (needle_tip_from_spec(spec)) of any kind (a CAD tip checked
+// against `tissue`: mesh/cad_tip.hpp), synchronised;
+int add_needle_tip(const NeedleTip& tip, const NeedleTipSpec& spec, const TissueCubeSpec& tissue);
 // curves a generated second-order mesh without inverting it; returns the passes that ran.
 std::string optimise_high_order();
 // makes the edges of every second-order tet still inverted straight; returns how many.

@@ -37,7 +37,7 @@ double accurate_up_to(const std::vector<PrbmCheckRow>& rows, double tolerance, E
 }  // namespace
 
 PrbmCheckResult run_prbm_check(const Case& input) {
-  const NeedleTip needle = needle_tip_from_case(input);
+  const NeedleTip needle = needle_tip_from_spec(parse_needle_tip_spec(input));
   if (needle.kind != NeedleTip::Kind::Compliant)
     throw input.error("needle.kind", "prbm-check needs the compliant (hinged) needle: set \"compliant\"");
   std::vector<double> angles = input.reals("prbm_check.angles_deg");

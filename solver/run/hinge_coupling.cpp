@@ -14,7 +14,6 @@
 #include <fmt/core.h>
 
 #include "case/case.hpp"
-#include "geometry/needle_tip.hpp"
 #include "integration/petsc_session.hpp"
 #include "output/xdmf_text.hpp"
 #include "physics/contact/hinged_needle.hpp"
@@ -178,8 +177,8 @@ std::string hinge_outputs(nlohmann::json& summary, const RunOptions& options, co
 
 }  // namespace
 
-bool head_turns_in_tissue(const Case& c, const RunSpecs& specs) {
-  return needle_in_contact(specs) && needle_tip_from_case(c).kind == NeedleTip::Kind::Compliant;
+bool head_turns_in_tissue(const RunSpecs& specs) {
+  return needle_in_contact(specs) && specs.needle_tip.kind == NeedleKind::compliant;
 }
 
 nlohmann::json run_hinged_case(const Case& c, const RunSpecs& specs, const RunOptions& options,

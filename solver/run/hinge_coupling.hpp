@@ -51,9 +51,8 @@ class Case;
 
 namespace needlefem::run {
 
-// True when the case's needle is the compliant tip in frictional contact. Takes the Case for the
-// needle's tip (needle_tip_from_case).
-bool head_turns_in_tissue(const Case& c, const RunSpecs& specs);
+// True when the case's needle is the compliant tip in frictional contact.
+bool head_turns_in_tissue(const RunSpecs& specs);
 
 // One run of the case with the head's tilt prescribed (options.head_tilt); returns its summary.
 using RunPass = std::function<nlohmann::json(const Case&, const RunSpecs&, const RunOptions&)>;

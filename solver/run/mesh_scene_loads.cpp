@@ -1,8 +1,11 @@
 #include "run/mesh_scene_loads.hpp"
 
+#include <optional>
+
 #include <fmt/core.h>
 
 #include "integration/petsc_arrays.hpp"
+#include "physics/contact/needle_contact.hpp"
 #include "physics/contact/scene_obstacle.hpp"
 #include "physics/mechanics/mechanics_system.hpp"
 #include "physics/mechanics/surface_pressure.hpp"
@@ -10,7 +13,17 @@
 namespace needlefem::run {
 
 namespace {
+
 constexpr double kMm2PerM2 = 1e6;
+
+// The obstacle's contact; the needle obstacle's motion is parsed (and checked) only for it.
+std::shared_ptr<contact::PenaltyContact> obstacle_contact(const Case& input, const RunSpecs& specs, const TetMesh& mesh,
+                                                 const contact::ContactParameters& contact_parameters) {
+  std::optional<contact::NeedleSpecs> needle;
+  if (specs.obstacle.kind == ObstacleKind::needle) needle = run_needle_specs(input, specs);
+  return contact::scene_obstacle_contact(specs.obstacle, needle ? &*needle : nullptr, contact_parameters, mesh);
+}
+
 }  // namespace
 
 std::unique_ptr<MeshSceneLoads> MeshSceneLoads::attach(const Case& input, const RunSpecs& specs, const TetMesh& mesh,
@@ -27,7 +40,7 @@ MeshSceneLoads::MeshSceneLoads(const Case& input, const RunSpecs& specs, const T
       history_(mechanics::LoadHistory::from_spec(specs.loading)),
       pressure_pa_(specs.pressure.value_pa),
       pressure_(!specs.pressure.groups.empty()),
-      contact_(contact::scene_obstacle_contact(input, specs.obstacle, contact_parameters, mesh)) {
+      contact_(obstacle_contact(input, specs, mesh, contact_parameters)) {
   if (pressure_)
     system.add_surface_load(std::make_shared<mechanics::SurfacePressure>(
         mesh, specs.pressure.groups,

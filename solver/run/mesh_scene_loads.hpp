@@ -33,8 +33,7 @@ class MeshSceneLoads {
  public:
   // nullptr unless scene.kind = "mesh"; otherwise adds the loads to `system` (`mesh` and `system`
   // must outlive the result), the obstacle's contact by the [contact] law `contact_parameters`
-  // (run_contact_parameters). Takes the Case for the needle obstacle's tip and motion
-  // (scene_obstacle.hpp).
+  // (run_contact_parameters). Takes the Case for the needle obstacle's motion (run_needle_specs).
   static std::unique_ptr<MeshSceneLoads> attach(const Case& input, const RunSpecs& specs, const TetMesh& mesh,
                                                 mechanics::MechanicsSystem& system,
                                                 const contact::ContactParameters& contact_parameters);

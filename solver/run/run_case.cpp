@@ -264,7 +264,7 @@ SceneModel load_run_scene(const Case& c, const RunSpecs& specs, const std::files
                           std::FILE* progress, std::shared_ptr<const contact::Needle>* needle) {
   SceneModel scene = load_scene_model(c, out_dir, progress);
   if (!needle_in_contact(specs)) return scene;
-  contact::RoundedCavity rounded = contact::round_cavity_to_needle(c, specs.needle_contact, scene.mesh);
+  contact::RoundedCavity rounded = contact::round_cavity_to_needle(run_needle_specs(c, specs), scene.mesh);
   scene.cavity_rounding = rounded.rounding;
   if (needle) *needle = std::move(rounded.needle);
   if (scene.cavity_rounding.moved_nodes == 0) return scene;
@@ -322,7 +322,8 @@ class RunPass {
     material_ = std::make_unique<material::Material>(material::material_from_spec(specs_.mechanics.material));
     const auto system = mechanics::MechanicsSystem::from_spec(specs_.mechanics, mesh,
                                                               newton_matrix_options_from_spec(specs_.integration));
-    if (needle && options_.head_tilt) needle = contact::needle_from_case(c_, nullptr, options_.head_tilt);
+    if (needle && options_.head_tilt)
+      needle = contact::needle_from_spec(run_needle_specs(c_, specs_), nullptr, options_.head_tilt);
     const contact::ContactParameters contact_parameters =
         run_contact_parameters(specs_, material_->instantaneous_shear_modulus());
     needle_ = NeedleOutput::attach(specs_.needle_contact, mesh, *system, contact_parameters, std::move(needle));
@@ -517,7 +518,7 @@ nlohmann::json run_one_pass(const Case& c, const RunSpecs& specs, const RunOptio
 
 nlohmann::json run_case(const Case& c, const RunOptions& options) {
   const RunSpecs specs = parse_run_specs(c);  // its case errors before anything is written
-  return head_turns_in_tissue(c, specs) ? run_hinged_case(c, specs, options, run_one_pass)
+  return head_turns_in_tissue(specs) ? run_hinged_case(c, specs, options, run_one_pass)
                                         : run_one_pass(c, specs, options);
 }
 

@@ -1,5 +1,6 @@
 #include "run/run_specs.hpp"
 
+#include "physics/contact/needle_contact.hpp"
 #include "physics/contact/penalty_contact.hpp"
 #include "physics/mechanics/load_history.hpp"
 
@@ -9,6 +10,8 @@ RunSpecs parse_run_specs(const Case& c) {
   return {.scene_kind = parse_scene_kind(c),
           .mechanics = parse_mechanics_spec(c),
           .contact = parse_contact_spec(c),
+          .needle_tip = parse_needle_tip_spec(c),
+          .tissue_cube = parse_tissue_cube_spec(c),
           .needle_contact = parse_needle_contact_spec(c),
           .obstacle = parse_obstacle_spec(c),
           .loading = parse_loading_spec(c),
@@ -25,6 +28,13 @@ bool needle_in_contact(const RunSpecs& specs) {
 contact::ContactParameters run_contact_parameters(const RunSpecs& specs, double reference_modulus) {
   return contact::contact_parameters_from_spec(specs.contact, reference_modulus,
                                                mechanics::history_end(specs.loading));
+}
+
+contact::NeedleSpecs run_needle_specs(const Case& c, const RunSpecs& specs) {
+  return {.tip = specs.needle_tip,
+          .tissue = specs.tissue_cube,
+          .contact = specs.needle_contact,
+          .motion = parse_motion_spec(c)};
 }
 
 }  // namespace needlefem::run

@@ -1,13 +1,14 @@
 // The case parsed once into the specs of the stages a run goes through (run_case.cpp; `needlefem
 // mesh` shows its scene, load_run_scene): each stage gets its own spec rather than the case and
-// its keys. Keys no spec covers yet (the needle's tip, meshing, steering) are still read from the
-// Case where they are used.
+// its keys. Keys no spec covers yet (meshing, steering) are still read from the Case where they
+// are used.
 #pragma once
 
 #include "case/specs/contact_spec.hpp"
 #include "case/specs/integration_spec.hpp"
 #include "case/specs/loading_spec.hpp"
 #include "case/specs/mechanics_spec.hpp"
+#include "case/specs/needle_tip_spec.hpp"
 #include "case/specs/output_spec.hpp"
 #include "case/specs/pressure_spec.hpp"
 #include "case/specs/scene_kind.hpp"
@@ -18,6 +19,7 @@ class Case;
 }
 namespace needlefem::contact {
 struct ContactParameters;
+struct NeedleSpecs;
 }
 
 namespace needlefem::run {
@@ -26,6 +28,8 @@ struct RunSpecs {
   SceneKind scene_kind;
   MechanicsSpec mechanics;
   ContactSpec contact;
+  NeedleTipSpec needle_tip;
+  TissueCubeSpec tissue_cube;  // a CAD tip's rules check the needle against it
   NeedleContactSpec needle_contact;
   ObstacleSpec obstacle;
   LoadingSpec loading;
@@ -47,5 +51,10 @@ bool needle_in_contact(const RunSpecs& specs);
 // obstacle): the penalty scaled by `reference_modulus` μ₀, the tissue's instantaneous shear
 // modulus, the multiplier updates spread over the scene's loading history (mechanics::history_end).
 contact::ContactParameters run_contact_parameters(const RunSpecs& specs, double reference_modulus);
+
+// What the run's needle (in contact, or a mesh scene's needle obstacle) is built from: the specs'
+// tip and contact keys with the needle's motion, parsed from `c` (parse_motion_spec, which refuses
+// a ramp longer than the motion) where a needle is built.
+contact::NeedleSpecs run_needle_specs(const Case& c, const RunSpecs& specs);
 
 }  // namespace needlefem::run

@@ -10,6 +10,9 @@
 
 #include <fmt/format.h>
 
+#include "case/case.hpp"
+#include "case/specs/needle_tip_spec.hpp"
+
 namespace needlefem::steering {
 
 namespace {
@@ -69,12 +72,13 @@ MagnetSchedule schedule_from_case(const Case& input, const SteeringModel& model,
 }  // namespace
 
 SteeringSetup steering_setup_from_case(const Case& input) {
-  if (input.text("needle.kind") != "compliant")
+  const NeedleTipSpec needle = parse_needle_tip_spec(input);
+  if (needle.kind != NeedleKind::compliant)
     throw input.error("needle.kind", "steering needs the compliant (hinged, magnetised) needle: set \"compliant\"");
   SteeringSetup setup;
   SteeringModel& model = setup.model;
-  model.hinge = {input.real("needle.neck_length_mm") * mm, input.real("needle.neck_diameter_mm") * mm,
-                 input.real("needle.head_length_mm") * mm, input.real("steering.neck_youngs_modulus_gpa") * 1e9,
+  model.hinge = {needle.neck_length_mm * mm, needle.neck_diameter_mm * mm, needle.head_length_mm * mm,
+                 input.real("steering.neck_youngs_modulus_gpa") * 1e9,
                  input.real("steering.tissue_spring_constant_n_per_m2")};
   model.magnet = {input.real("steering.magnet_residual_flux_density_t"), input.real("steering.magnet_pole_width_mm") * mm,
                   input.real("steering.magnet_pole_length_mm") * mm, input.real("steering.magnet_thickness_mm") * mm,
@@ -103,7 +107,7 @@ SteeringSetup steering_setup_from_case(const Case& input) {
   scene.obstacle_centre_m = {0.0, 0.0, 0.5 * block[2]};
   scene.obstacle_radius_m = input.real("steering.obstacle_radius_mm") * mm;
   scene.target_m = vec3(input.reals("steering.target_mm"), mm);
-  scene.needle_radius_m = input.real("needle.radius_mm") * mm;
+  scene.needle_radius_m = needle.radius_mm * mm;
   if (2.0 * scene.obstacle_radius_m >= std::min({block[0], block[1], block[2]}))
     throw input.error("steering.obstacle_radius_mm", "the obstacle does not fit inside the block");
   setup.target_tolerance_m = input.real("steering.target_tolerance_mm") * mm;

@@ -278,8 +278,8 @@ std::string point_name(const std::vector<std::string>& labels, const std::vector
 }
 
 std::vector<RuleViolation> scene_violations(const Case& c) {
-  if (c.text("scene.kind") != "brain-tip" || !c.path("scene.mesh_file").empty()) return {};
-  return brain_tip_scene_violations(c, needle_tip_from_case(c));
+  if (!generates_brain_tip_scene(c)) return {};
+  return brain_tip_scene_violations(parse_tissue_cube_spec(c), needle_tip_from_spec(parse_needle_tip_spec(c)));
 }
 
 // scene.mesh_file made absolute: relative to the file that named it.

@@ -21,7 +21,8 @@ BevelTip bevel(double r, double alpha_deg, double tau, double shaft = 0.1) {
 std::vector<std::string> rules_of(const std::string& overrides_toml) {
   const Case c = Case::parse(overrides_toml, "rules.toml");
   std::vector<std::string> rules;
-  for (const auto& v : brain_tip_scene_violations(c, needle_tip_from_case(c))) rules.push_back(v.rule);
+  const NeedleTip tip = needle_tip_from_spec(parse_needle_tip_spec(c));
+  for (const auto& v : brain_tip_scene_violations(parse_tissue_cube_spec(c), tip)) rules.push_back(v.rule);
   return rules;
 }
 }  // namespace
@@ -92,7 +93,7 @@ TEST(NeedleTip, ImpossibleCombinationsNameTheirRule) {
 TEST(NeedleTip, RequireValidSceneListsEveryViolatedRule) {
   const Case c = Case::parse("[needle]\nradius_mm = 0.32\nfillet_mm = 0.45\n[tissue]\ncore_element_mm = 3", "bad.toml");
   try {
-    require_valid_scene(c);
+    require_valid_brain_tip_scene(parse_needle_tip_spec(c), parse_tissue_cube_spec(c));
     FAIL();
   } catch (const CaseError& e) {
     const std::string m = e.what();
@@ -106,7 +107,8 @@ TEST(NeedleTip, TissueRulesAreReportedUnderTheirTissueKey) {
   for (const auto& [toml, key] : {std::pair{"[tissue]\ncore_element_mm = 3", "tissue.core_element_mm"},
                                   std::pair{"[tissue]\ncore_width_mm = 12", "tissue.core_width_mm"}}) {
     try {
-      require_valid_scene(Case::parse(toml, "bad.toml"));
+      const Case c = Case::parse(toml, "bad.toml");
+      require_valid_brain_tip_scene(parse_needle_tip_spec(c), parse_tissue_cube_spec(c));
       FAIL() << toml;
     } catch (const CaseError& e) {
       EXPECT_NE(std::string(e.what()).find(fmt::format("bad.toml: key '{}': impossible geometry", key)),

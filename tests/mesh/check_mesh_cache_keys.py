@@ -3,7 +3,8 @@
 solver/mesh/mesh_cache.cpp), or is one the cache handles otherwise: a key missing there would let
 a changed value find the mesh of the old one.
 
-Reads the sources: the keys read as c.text("..."), c.real("..."), ... in the mesher's files.
+Reads the sources: the keys read as c.text("..."), c.real("..."), ... or parse_choice(c, "...")
+in the mesher's files.
 
 usage: check_mesh_cache_keys.py SOURCE_DIR
 """
@@ -12,11 +13,12 @@ import sys
 from pathlib import Path
 
 # The files whose case reads decide the scene mesh: every source of solver/mesh/ but the cache
-# itself (the scene mesher, its size field, the CAD tip it imports), and the needle tip and scene
-# rules it checks. A file split out of the mesher is read without being listed here.
+# itself (the scene mesher, its size field, the CAD tip it imports), and the parser of the needle
+# tip and tissue cube it builds and checks the scene rules on (case/specs/needle_tip_spec.cpp). A
+# file split out of the mesher is read without being listed here.
 def mesher_files(source):
     mesh = sorted(p for p in (source / "solver/mesh").glob("*.cpp") if p.name != "mesh_cache.cpp")
-    return mesh + [source / "solver/geometry/needle_tip.cpp"]
+    return mesh + [source / "solver/case/specs/needle_tip_spec.cpp"]
 # Keys those files read that the key leaves out, and why.
 HANDLED_OTHERWISE = {
     "scene.mesh_file": "bypasses the cache",
@@ -25,7 +27,8 @@ HANDLED_OTHERWISE = {
     "needle.cad_facet_um": "the contact needle's triangulation (cad_tip.cpp), not the scene mesh",
     "needle.cad_facet_deg": "the contact needle's triangulation (cad_tip.cpp), not the scene mesh",
 }
-READ = re.compile(r'\bc\.(?:text|real|reals|integer|flag|texts|path|given|has|maybe_real)\("([a-z_0-9.]+)"\)')
+READ = re.compile(r'(?:\bc\.(?:text|real|reals|integer|flag|texts|path|given|has|maybe_real)\(|\bparse_choice\(c, )'
+                  r'"([a-z_0-9.]+)"')
 
 
 def main():

@@ -47,7 +47,6 @@ ContactSpec parse_contact_spec(const Case& c) {
 NeedleContactSpec parse_needle_contact_spec(const Case& c) {
   return {.origin = c.origin(),
           .edge_radius_um = c.real("needle.edge_radius_um"),
-          .cad_file = c.path("needle.cad_file"),
           .scene_mesh_file = c.path("scene.mesh_file"),
           .deflection_check = {.enabled = c.flag("needle.deflection_check"),
                                .youngs_modulus_gpa = c.real("needle.youngs_modulus_gpa"),

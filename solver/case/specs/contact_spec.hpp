@@ -47,7 +47,6 @@ struct NeedleDeflectionCheckSpec {
 struct NeedleContactSpec {
   std::string origin;                     // the case's, for the CaseErrors of rules checked against the mesh
   double edge_radius_um;                  // needle.edge_radius_um
-  std::filesystem::path cad_file;         // needle.cad_file, resolved against the case's folder; empty: none
   std::filesystem::path scene_mesh_file;  // scene.mesh_file, resolved; empty: the generated mesh
   NeedleDeflectionCheckSpec deflection_check;
 };

@@ -10,7 +10,7 @@
 
 #include <fmt/format.h>
 
-#include "case/case.hpp"
+#include "case/case_error.hpp"
 #include "geometry/needle_motion.hpp"
 #include "geometry/needle_tip.hpp"
 #include "mesh/cad_tip.hpp"
@@ -63,8 +63,8 @@ void require_cavity_on_needle(const NeedleContactSpec& spec, const TetMesh& mesh
                                  tolerance * kMmPerM));
 }
 
-std::shared_ptr<const CadNeedleShape> cad_needle_shape(const NeedleContactSpec& spec,
-                                                       const CadTipTriangulation& cad, double edge_radius) {
+std::shared_ptr<const CadNeedleShape> cad_needle_shape(const NeedleTipSpec& spec, const CadTipTriangulation& cad,
+                                                       double edge_radius) {
   try {
     return std::make_shared<CadNeedleShape>(TriangleSoup{cad.vertices, cad.triangles}, edge_radius);
   } catch (const std::invalid_argument& e) {
@@ -74,18 +74,17 @@ std::shared_ptr<const CadNeedleShape> cad_needle_shape(const NeedleContactSpec& 
 
 }  // namespace
 
-std::shared_ptr<const Needle> needle_from_case(const Case& input, std::shared_ptr<const Needle>* sharp,
+std::shared_ptr<const Needle> needle_from_spec(const NeedleSpecs& specs, std::shared_ptr<const Needle>* sharp,
                                                std::shared_ptr<const HeadTilt> tilt) {
   constexpr double kSharpEdge = 1e-12;  // m: the needle without its edge rounding
-  const NeedleTip tip = needle_tip_from_case(input);
-  const NeedleContactSpec spec = parse_needle_contact_spec(input);
-  const double edge_radius = spec.edge_radius_um * kMPerUm;
-  const NeedleMotion motion = needle_motion_from_spec(parse_motion_spec(input));
+  const NeedleTip tip = needle_tip_from_spec(specs.tip);
+  const double edge_radius = specs.contact.edge_radius_um * kMPerUm;
+  const NeedleMotion motion = needle_motion_from_spec(specs.motion);
   switch (tip.kind) {
     case NeedleTip::Kind::Cad: {
-      const CadTipTriangulation cad = triangulate_cad_tip(input);
-      if (sharp) *sharp = std::make_shared<RigidNeedle>(cad_needle_shape(spec, cad, 0.0), motion);
-      return std::make_shared<RigidNeedle>(cad_needle_shape(spec, cad, edge_radius), motion);
+      const CadTipTriangulation cad = triangulate_cad_tip(specs.tip, specs.tissue);
+      if (sharp) *sharp = std::make_shared<RigidNeedle>(cad_needle_shape(specs.tip, cad, 0.0), motion);
+      return std::make_shared<RigidNeedle>(cad_needle_shape(specs.tip, cad, edge_radius), motion);
     }
     case NeedleTip::Kind::Compliant:
       if (sharp) *sharp = std::make_shared<HingedNeedle>(tip.compliant, motion, kSharpEdge, tilt);
@@ -97,11 +96,12 @@ std::shared_ptr<const Needle> needle_from_case(const Case& input, std::shared_pt
   return std::make_shared<RigidNeedle>(tip.bevel, motion, edge_radius);
 }
 
-RoundedCavity round_cavity_to_needle(const Case& input, const NeedleContactSpec& spec, TetMesh& mesh) {
+RoundedCavity round_cavity_to_needle(const NeedleSpecs& specs, TetMesh& mesh) {
   constexpr double kRoundingMoveLimit = 4.0;  // edge radii
+  const NeedleContactSpec& spec = specs.contact;
   const bool user_mesh = !spec.scene_mesh_file.empty();
   std::shared_ptr<const Needle> sharp;  // without the edge rounding, as the cavity was meshed
-  RoundedCavity rounded{needle_from_case(input, user_mesh ? &sharp : nullptr), {}};
+  RoundedCavity rounded{needle_from_spec(specs, user_mesh ? &sharp : nullptr), {}};
   if (user_mesh) require_cavity_on_needle(spec, mesh, *sharp);
   rounded.rounding = round_cavity(mesh, [&](const Point3& X) {
     const ObstacleProjection p = rounded.needle->project(X, 0.0);

@@ -33,6 +33,8 @@
 #include <vector>
 
 #include "case/specs/contact_spec.hpp"
+#include "case/specs/motion_spec.hpp"
+#include "case/specs/needle_tip_spec.hpp"
 #include "model/cavity_rounding.hpp"
 #include "model/tet_mesh.hpp"
 #include "physics/contact/hinged_needle.hpp"
@@ -40,33 +42,38 @@
 #include "physics/contact/penalty_contact.hpp"
 #include "physics/mechanics/dof_map.hpp"
 
-namespace needlefem {
-class Case;
-}
-
 namespace needlefem::contact {
 
-// The needle of the case's [needle] and [motion]: the analytic bevel (needle_obstacle.hpp), a
-// CAD tip (needle.kind = "cad", cad_needle.hpp), or the compliant tip, its head turned by `tilt`
-// (needle.kind = "compliant", hinged_needle.hpp; null: not turned). Throws CaseError for a CAD
-// file that breaks a rule (mesh/cad_tip.hpp) or a motion whose ramp is too long. `sharp`
-// (optional): also the same needle without its edge rounding (a CAD tip's from the same
-// triangulation). Takes the Case for the tip's shape (needle_tip_from_case, triangulate_cad_tip).
-std::shared_ptr<const Needle> needle_from_case(const Case& input, std::shared_ptr<const Needle>* sharp = nullptr,
+// What the case's needle is built from: its tip and the tissue cube a CAD tip's rules check it
+// against (parse_needle_tip_spec, parse_tissue_cube_spec), its edge rounding and, for a user's
+// mesh, the cavity's check (parse_needle_contact_spec), and its motion (parse_motion_spec).
+struct NeedleSpecs {
+  NeedleTipSpec tip;
+  TissueCubeSpec tissue;
+  NeedleContactSpec contact;
+  MotionSpec motion;
+};
+
+// The needle of the specs: the analytic bevel (needle_obstacle.hpp), a CAD tip
+// (NeedleKind::cad, cad_needle.hpp), or the compliant tip, its head turned by `tilt`
+// (NeedleKind::compliant, hinged_needle.hpp; null: not turned). Throws CaseError for a CAD file
+// that breaks a rule (mesh/cad_tip.hpp). `sharp` (optional): also the same needle without its
+// edge rounding (a CAD tip's from the same triangulation).
+std::shared_ptr<const Needle> needle_from_spec(const NeedleSpecs& specs, std::shared_ptr<const Needle>* sharp = nullptr,
                                                std::shared_ptr<const HeadTilt> tilt = nullptr);
 
 // For the needle in contact (the brain-tip scene with contact.mode = "frictional"): moves the
-// mesh's cavity onto the rounded needle of the case at t = 0 (model/cavity_rounding.hpp), a
-// user's mesh (spec.scene_mesh_file) once its cavity has been checked against the sharp needle
-// (CaseError naming the largest offset); a CaseError naming needle.edge_radius_um when the
+// mesh's cavity onto the rounded needle of the specs at t = 0 (model/cavity_rounding.hpp), a
+// user's mesh (specs.contact.scene_mesh_file) once its cavity has been checked against the sharp
+// needle (CaseError naming the largest offset); a CaseError naming needle.edge_radius_um when the
 // rounding moves the cavity by more than four edge radii (a point sharper than the radius can
 // round). Returns what moved and the needle, to be the needle in contact too: a CAD tip's
-// triangulation and core are then built once. Takes the Case for needle_from_case.
+// triangulation and core are then built once.
 struct RoundedCavity {
   std::shared_ptr<const Needle> needle;
   CavityRounding rounding;
 };
-RoundedCavity round_cavity_to_needle(const Case& input, const NeedleContactSpec& spec, TetMesh& mesh);
+RoundedCavity round_cavity_to_needle(const NeedleSpecs& specs, TetMesh& mesh);
 
 struct NeedleLoad {
   Point3 force{};   // on the needle, N
@@ -82,7 +89,7 @@ struct GapRange {
 
 class NeedleContact {
  public:
-  // `needle` (needle_from_case: the case's [needle] and [motion]) pressed into the cavity of `mesh`
+  // `needle` (needle_from_spec: the case's [needle] and [motion]) pressed into the cavity of `mesh`
   // (which must outlive this) with the [contact] law (contact_parameters_from_spec), its gaps
   // measured from those at t = 0.
   NeedleContact(ContactParameters parameters, const TetMesh& mesh, std::shared_ptr<const Needle> needle);

@@ -13,7 +13,7 @@ Point3 point_in_metres(const std::array<double, 3>& v) {
   return {v[0] * kMetresPerMm, v[1] * kMetresPerMm, v[2] * kMetresPerMm};
 }
 
-std::shared_ptr<const RigidObstacle> scene_obstacle(const Case& input, const ObstacleSpec& spec) {
+std::shared_ptr<const RigidObstacle> scene_obstacle(const ObstacleSpec& spec, const NeedleSpecs* needle) {
   const Point3 velocity = point_in_metres(spec.velocity_mm_per_s);
   switch (spec.kind) {
     case ObstacleKind::plane:
@@ -22,7 +22,7 @@ std::shared_ptr<const RigidObstacle> scene_obstacle(const Case& input, const Obs
       return std::make_shared<TranslatingSphere>(point_in_metres(spec.point_mm), spec.radius_mm * kMetresPerMm,
                                                  velocity);
     case ObstacleKind::needle:
-      return std::make_shared<OffsetObstacle>(needle_from_case(input), point_in_metres(spec.point_mm));
+      return std::make_shared<OffsetObstacle>(needle_from_spec(*needle), point_in_metres(spec.point_mm));
     case ObstacleKind::none:
       break;
   }
@@ -31,9 +31,9 @@ std::shared_ptr<const RigidObstacle> scene_obstacle(const Case& input, const Obs
 
 }  // namespace
 
-std::shared_ptr<PenaltyContact> scene_obstacle_contact(const Case& input, const ObstacleSpec& spec,
+std::shared_ptr<PenaltyContact> scene_obstacle_contact(const ObstacleSpec& spec, const NeedleSpecs* needle,
                                                        const ContactParameters& parameters, const TetMesh& mesh) {
-  auto obstacle = scene_obstacle(input, spec);
+  auto obstacle = scene_obstacle(spec, needle);
   if (!obstacle) return nullptr;
   return std::make_shared<PenaltyContact>(mesh, spec.group, std::move(obstacle), parameters);
 }

@@ -15,16 +15,15 @@
 
 #include "physics/contact/penalty_contact.hpp"
 
-namespace needlefem {
-class Case;
-}
-
 namespace needlefem::contact {
+
+struct NeedleSpecs;
 
 // The contact of the case's obstacle `spec` with spec.group of `mesh` (which must outlive it), by
 // the [contact] law `parameters` (contact_parameters_from_spec); nullptr for obstacle.kind =
-// "none". Takes the Case for the needle obstacle's tip and motion (needle_from_case).
-std::shared_ptr<PenaltyContact> scene_obstacle_contact(const Case& input, const ObstacleSpec& spec,
+// "none". `needle`: the needle obstacle's tip and motion (needle_from_spec), needed only for
+// obstacle.kind = "needle".
+std::shared_ptr<PenaltyContact> scene_obstacle_contact(const ObstacleSpec& spec, const NeedleSpecs* needle,
                                                        const ContactParameters& parameters, const TetMesh& mesh);
 
 }  // namespace needlefem::contact
