@@ -14,12 +14,13 @@
 #include <optional>
 #include <stdexcept>
 #include <system_error>
+#include <utility>
 
 #include <fmt/core.h>
 #include <gmsh.h>
 #include <nlohmann/json.hpp>
 
-#include "case/case.hpp"
+#include "case/specs/mesh_spec.hpp"
 #include "mesh/gmsh_session.hpp"
 
 namespace needlefem {
@@ -27,20 +28,6 @@ namespace needlefem {
 namespace fs = std::filesystem;
 
 namespace {
-
-// Every case key the scene mesher reads (scene_mesher.cpp, size_field.cpp, cad_tip.cpp's import_cad_tip and
-// case/specs/needle_tip_spec.cpp's parse_needle_tip_spec and the scene rules). A key the mesher starts to read
-// must be added here, or a changed value would find the mesh of the old one.
-// scene.mesh_file and needle.export_file bypass the cache; needle.cad_file is keyed by its bytes.
-constexpr const char* kMeshKeys[] = {
-    "scene.kind",
-    "tissue.cube_edge_mm", "tissue.core_width_mm", "tissue.core_element_mm", "tissue.outer_element_mm",
-    "tissue.curvature_elements",
-    "needle.kind", "needle.radius_mm", "needle.bevel_deg", "needle.fillet_mm", "needle.edge_radius_um",
-    "needle.shaft_mm", "needle.head_length_mm", "needle.neck_length_mm", "needle.neck_diameter_mm",
-    "needle.point_length_mm", "needle.mesh_volume",
-    "block.size_mm", "block.element_mm",
-    "mesh.order", "mesh.optimize_high_order", "mesh.seed", "mesh.refinement_level"};
 
 constexpr const char* kInfoSection = "$NeedlefemMeshInfo\n";
 constexpr const char* kInfoSectionEnd = "\n$EndNeedlefemMeshInfo\n";
@@ -83,12 +70,6 @@ const std::string& gmsh_version() {
     return v;
   }();
   return version;
-}
-
-std::string json_pointer_of(const std::string& key) {
-  std::string pointer = "/" + key;
-  std::replace(pointer.begin(), pointer.end(), '.', '/');
-  return pointer;
 }
 
 nlohmann::json to_json(const ElementSizeStats& s) {
@@ -212,7 +193,7 @@ void remove_stale_temporaries(const fs::path& directory) {
 // Meshes the scene into a temporary file in the cache directory and publishes it as `entry`:
 // "" when the entry exists afterwards (this run's or a concurrent run's: the first link wins),
 // else why the directory could not take it. Errors of the case and of gmsh propagate.
-std::string mesh_and_publish(const Case& c, const fs::path& entry, std::FILE* progress) {
+std::string mesh_and_publish(const MeshSpec& spec, const fs::path& entry, std::FILE* progress) {
   std::error_code error;
   fs::create_directories(entry.parent_path(), error);
   if (error) return error.message();
@@ -223,7 +204,7 @@ std::string mesh_and_publish(const Case& c, const fs::path& entry, std::FILE* pr
     return system_reason(errno);
   else
     ::close(probe);
-  const SceneMeshInfo info = generate_scene_mesh(c, temporary.path(), progress);
+  const SceneMeshInfo info = generate_scene_mesh(spec, temporary.path(), progress);
   // gmsh does not report a failed write: the entry is published only if the mesh ends where gmsh
   // ends it and the info section that follows reached the disk.
   if (!ends_a_section(temporary.path())) return "the mesh gmsh wrote there is cut short; disk full?";
@@ -256,9 +237,9 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 }
 
 // Without the cache: the mesh written straight to msh_file.
-SceneMeshInfo mesh_uncached(const Case& c, const fs::path& msh_file, std::FILE* progress, const std::string& cache,
+SceneMeshInfo mesh_uncached(const MeshSpec& spec, const fs::path& msh_file, std::FILE* progress, const std::string& cache,
                             const std::string& key, const std::string& note) {
-  SceneMeshInfo info = generate_scene_mesh(c, msh_file, progress);
+  SceneMeshInfo info = generate_scene_mesh(spec, msh_file, progress);
   info.cache = cache;
   info.cache_key = key;
   info.cache_note = note;
@@ -266,14 +247,42 @@ SceneMeshInfo mesh_uncached(const Case& c, const fs::path& msh_file, std::FILE* 
   return info;
 }
 
-// The canonical text the key hashes, one "name = value" line each.
-std::string mesh_cache_key_text(const Case& c) {
-  const nlohmann::json values = c.to_json();
+// The canonical text the key hashes: a "key = value" line for each key of the mesh spec (every
+// key the scene mesher reads) but the files handled otherwise: scene.mesh_file and
+// needle.export_file bypass the cache, needle.cad_file is keyed by its bytes, and the CAD tip's
+// facet keys shape the contact needle, not the scene mesh. A key the spec starts to hold must be
+// added here, or a changed value would find the mesh of the old one
+// (tests/mesh/check_mesh_cache_keys.py).
+std::string mesh_cache_key_text(const MeshSpec& spec) {
+  const NeedleTipSpec& tip = spec.needle_tip;
+  const TissueCubeSpec& tissue = spec.tissue;
   std::string text;
-  for (const char* key : kMeshKeys)
-    text += fmt::format("{} = {}\n", key, values.at(nlohmann::json::json_pointer(json_pointer_of(key))).dump());
-  if (const fs::path cad = c.path("needle.cad_file"); !cad.empty())
-    text += fmt::format("needle.cad_file bytes = {}\n", file_hash(cad));
+  const auto line = [&text](const char* key, const auto& value) { text += fmt::format("{} = {}\n", key, value); };
+  line("scene.kind", scene_kind_name(spec.scene_kind));
+  line("tissue.cube_edge_mm", tissue.cube_edge_mm);
+  line("tissue.core_width_mm", tissue.core_width_mm);
+  line("tissue.core_element_mm", tissue.core_element_mm);
+  line("tissue.outer_element_mm", tissue.outer_element_mm);
+  line("tissue.curvature_elements", spec.curvature_elements);
+  line("needle.kind", static_cast<int>(tip.kind));  // the enumerator
+  line("needle.radius_mm", tip.radius_mm);
+  line("needle.bevel_deg", tip.bevel_deg);
+  line("needle.fillet_mm", tip.fillet_mm);
+  line("needle.edge_radius_um", spec.needle_edge_radius_um);
+  line("needle.shaft_mm", tip.shaft_mm);
+  line("needle.head_length_mm", tip.head_length_mm);
+  line("needle.neck_length_mm", tip.neck_length_mm);
+  line("needle.neck_diameter_mm", tip.neck_diameter_mm);
+  line("needle.point_length_mm", tip.point_length_mm);
+  line("needle.mesh_volume", spec.needle_mesh_volume);
+  const auto& block = spec.block_size_mm;
+  line("block.size_mm", fmt::format("[{}, {}, {}]", block[0], block[1], block[2]));
+  line("block.element_mm", spec.block_element_mm);
+  line("mesh.order", spec.order);
+  line("mesh.optimize_high_order", spec.optimize_high_order);
+  line("mesh.seed", spec.seed);
+  line("mesh.refinement_level", spec.refinement_level);
+  if (!tip.cad_file.empty()) text += fmt::format("needle.cad_file bytes = {}\n", file_hash(tip.cad_file));
   text += fmt::format("gmsh = {}\nexecutable = {}\n", gmsh_version(), executable_hash());
   return text;
 }
@@ -288,31 +297,32 @@ fs::path mesh_cache_directory() {
   return {};
 }
 
-std::string mesh_cache_key(const Case& c) {
+std::string mesh_cache_key(const MeshSpec& spec) {
   Fnv1a hash;
-  hash.add(mesh_cache_key_text(c));
+  hash.add(mesh_cache_key_text(spec));
   return hash.hex();
 }
 
-SceneMeshInfo build_scene_mesh(const Case& c, const fs::path& msh_file, std::FILE* progress) {
-  for (const char* key : {"scene.mesh_file", "needle.export_file"})
-    if (!c.path(key).empty())
-      return mesh_uncached(c, msh_file, progress, "bypassed", "", fmt::format("{} is given", key));
+SceneMeshInfo build_scene_mesh(const MeshSpec& spec, const fs::path& msh_file, std::FILE* progress) {
+  const std::pair<const char*, const fs::path*> bypassing[] = {{"scene.mesh_file", &spec.scene_mesh_file},
+                                                               {"needle.export_file", &spec.needle_export_file}};
+  for (const auto& [key, file] : bypassing)
+    if (!file->empty()) return mesh_uncached(spec, msh_file, progress, "bypassed", "", fmt::format("{} is given", key));
   const auto start = std::chrono::steady_clock::now();
-  const std::string key = mesh_cache_key(c);
+  const std::string key = mesh_cache_key(spec);
   const fs::path directory = mesh_cache_directory();
   if (directory.empty())
-    return mesh_uncached(c, msh_file, progress, "off", key,
+    return mesh_uncached(spec, msh_file, progress, "off", key,
                          "no cache directory (neither NEEDLEFEM_MESH_CACHE nor HOME set)");
   const fs::path entry = directory / (key + ".msh");
   std::error_code error;
   const bool hit = fs::exists(entry, error);
   if (!hit) {
-    if (const std::string why = mesh_and_publish(c, entry, progress); !why.empty()) {
+    if (const std::string why = mesh_and_publish(spec, entry, progress); !why.empty()) {
       const std::string note = fmt::format("mesh cache {} cannot be written ({}): meshed into the output directory, "
                                            "not cached", directory.string(), why);
       say(progress, "mesh: " + note);
-      return mesh_uncached(c, msh_file, progress, "off", key, note);
+      return mesh_uncached(spec, msh_file, progress, "off", key, note);
     }
   }
   std::optional<SceneMeshInfo> info = read_info_section(entry);
@@ -320,7 +330,7 @@ SceneMeshInfo build_scene_mesh(const Case& c, const fs::path& msh_file, std::FIL
     const std::string note = fmt::format("mesh cache entry {} has no mesh information: meshed into the output "
                                          "directory (delete the entry to cache this scene again)", entry.string());
     say(progress, "mesh: " + note);
-    return mesh_uncached(c, msh_file, progress, "off", key, note);
+    return mesh_uncached(spec, msh_file, progress, "off", key, note);
   }
   copy_entry(entry, msh_file);
   info->seconds = seconds_since(start);

@@ -4,8 +4,9 @@
 // frictional contact turns that into other step sequences and maxima).
 //
 // An entry is one .msh named by the key, a hash of
-//   - the canonical text (key = value as the resolved case gives it) of every case key the scene
-//     mesher reads (kMeshKeys in mesh_cache.cpp; the bytes of needle.cad_file too),
+//   - the canonical text (key = value) of every case key the scene mesher reads, from its mesh
+//     spec (case/specs/mesh_spec.hpp; mesh_cache_key_text in mesh_cache.cpp; the bytes of
+//     needle.cad_file too),
 //   - gmsh's version,
 //   - the bytes of the running executable (/proc/self/exe): a rebuild invalidates every entry.
 // The entry holds the mesh as gmsh wrote it and, in a section gmsh skips ($NeedlefemMeshInfo),
@@ -33,14 +34,14 @@
 
 namespace needlefem {
 
-class Case;
+struct MeshSpec;
 
 // The directory the cache uses in this environment (not created).
 std::filesystem::path mesh_cache_directory();
 
-// The key of the case's scene mesh: 16 hexadecimal digits, the hash of a canonical text (the
+// The key of the mesh spec's scene mesh: 16 hexadecimal digits, the hash of a canonical text (the
 // mesher's case keys, gmsh's version and the executable's hash, one "name = value" line each).
-std::string mesh_cache_key(const Case& c);
+std::string mesh_cache_key(const MeshSpec& spec);
 
 // Where the scene mesh came from, for run summaries and mesh reports: {"source": "hit" | "miss" |
 // "off" | "bypassed", "key", "file", "note"} (SceneMeshInfo::cache).

@@ -20,7 +20,8 @@
 #include <fmt/core.h>
 #include <gmsh.h>
 
-#include "case/case.hpp"
+#include "case/case_error.hpp"
+#include "case/specs/mesh_spec.hpp"
 #include "geometry/needle_tip.hpp"
 #include "mesh/cad_tip.hpp"
 #include "mesh/gmsh_session.hpp"
@@ -161,9 +162,9 @@ std::vector<int> surfaces_of(const std::set<int>& volumes) {
   return {unique.begin(), unique.end()};
 }
 
-void set_mesh_options(const Case& c) {
-  gmsh::option::setNumber("Mesh.RandomSeed", static_cast<double>(c.integer("mesh.seed")));
-  gmsh::option::setNumber("Mesh.ElementOrder", static_cast<double>(c.integer("mesh.order")));
+void set_mesh_options(const MeshSpec& spec) {
+  gmsh::option::setNumber("Mesh.RandomSeed", static_cast<double>(spec.seed));
+  gmsh::option::setNumber("Mesh.ElementOrder", static_cast<double>(spec.order));
   gmsh::option::setNumber("Mesh.SecondOrderLinear", 0);  // mid-side nodes on the curved CAD faces
   // The high-order optimiser keeps gmsh's six element layers around each element it curves.
   // One layer meshes faster (docs/speed.md), but it moved the tip maxima of thin needles (r = 0.32 mm, 10 deg, 0.15 mm: log strain 0.370 -> 0.422, von Mises 6738 ->
@@ -271,11 +272,11 @@ std::size_t straighten_inverted_tets() {
 
 namespace {
 
-std::string generate_and_write(const Case& c, const std::filesystem::path& msh_file,
+std::string generate_and_write(const MeshSpec& spec, const std::filesystem::path& msh_file,
                                const std::function<void()>& measure = {}) {
   gmsh::model::mesh::generate(3);
   std::string optimisation = "none";
-  if (c.integer("mesh.order") == 2 && c.flag("mesh.optimize_high_order")) {
+  if (spec.order == 2 && spec.optimize_high_order) {
     optimisation = optimise_high_order();
     if (const std::size_t straightened = straighten_inverted_tets())
       optimisation += fmt::format("; {} tets still inverted made straight-edged", straightened);
@@ -292,7 +293,7 @@ std::string generate_and_write(const Case& c, const std::filesystem::path& msh_f
 // The brain-tip scene's physical groups: surfaces cavity, entry, the cube's faces and "fixed",
 // needle_rear (and needle_surface with the needle meshed); volumes tissue_core, tissue_outer (and
 // needle). Returns the surface groups.
-std::map<std::string, std::vector<int>> add_scene_groups(const Case& c, double edge, const std::set<int>& core_volumes,
+std::map<std::string, std::vector<int>> add_scene_groups(bool mesh_needle, double edge, const std::set<int>& core_volumes,
                                                          const std::set<int>& outer_volumes,
                                                          const std::set<int>& needle_volumes) {
   const std::vector<int> needle_surfaces = surfaces_of(needle_volumes);
@@ -310,35 +311,33 @@ std::map<std::string, std::vector<int>> add_scene_groups(const Case& c, double e
   }
   for (int s : needle_surfaces)
     if (box_face_of(s, lo, hi) == "z_min") groups["needle_rear"].push_back(s);
-  if (c.flag("needle.mesh_volume")) groups["needle_surface"] = needle_surfaces;
+  if (mesh_needle) groups["needle_surface"] = needle_surfaces;
   if (groups["cavity"].empty() || groups["entry"].empty() || groups["needle_rear"].empty())
     throw std::runtime_error("gmsh: could not identify the cavity, entry and needle-rear surfaces");
   for (const auto& [name, tags] : groups) add_physical(2, tags, name);
   add_physical(3, {core_volumes.begin(), core_volumes.end()}, "tissue_core");
   add_physical(3, {outer_volumes.begin(), outer_volumes.end()}, "tissue_outer");
-  if (c.flag("needle.mesh_volume")) add_physical(3, {needle_volumes.begin(), needle_volumes.end()}, "needle");
+  if (mesh_needle) add_physical(3, {needle_volumes.begin(), needle_volumes.end()}, "needle");
 
   return groups;
 }
 
-SceneMeshInfo mesh_brain_tip(const Case& c, const std::filesystem::path& msh_file) {
-  const NeedleTipSpec tip_spec = parse_needle_tip_spec(c);
-  const TissueCubeSpec tissue = parse_tissue_cube_spec(c);
-  const NeedleTip tip = needle_tip_from_spec(tip_spec);
-  const double edge = tissue.cube_edge_mm, core = tissue.core_width_mm;
+SceneMeshInfo mesh_brain_tip(const MeshSpec& spec, const std::filesystem::path& msh_file) {
+  const NeedleTip tip = needle_tip_from_spec(spec.needle_tip);
+  const double edge = spec.tissue.cube_edge_mm, core = spec.tissue.core_width_mm;
   SceneMeshInfo info;
-  info.grading.refinement_level = static_cast<int>(c.integer("mesh.refinement_level"));
+  info.grading.refinement_level = static_cast<int>(spec.refinement_level);
   info.needle_description = tip.describe();
   info.needle_analytic_volume_m3 = tip.analytic_volume();
   info.domain_volume_m3 = std::pow(edge / kMmPerM, 3);
 
-  const int needle = add_needle_tip(tip, tip_spec, tissue);
+  const int needle = add_needle_tip(tip, spec.needle_tip, spec.tissue);
   double cad_volume_mm3 = 0;
   occ::getMass(3, needle, cad_volume_mm3);
   info.needle_cad_volume_m3 = cad_volume_mm3 / std::pow(kMmPerM, 3);
   // A CAD tip has no independent volume: its own is the reference.
   if (tip.kind == NeedleTip::Kind::Cad) info.needle_analytic_volume_m3 = info.needle_cad_volume_m3;
-  if (!c.path("needle.export_file").empty()) gmsh::write(c.path("needle.export_file").string());
+  if (!spec.needle_export_file.empty()) gmsh::write(spec.needle_export_file.string());
 
   const int cube = occ::addBox(-edge / 2, -edge / 2, 0, edge, edge, edge);
   const int core_box = occ::addBox(-core / 2, -core / 2, 0, core, core, edge);
@@ -350,15 +349,15 @@ SceneMeshInfo mesh_brain_tip(const Case& c, const std::filesystem::path& msh_fil
   const std::set<int> outer_volumes = minus(tags_of(piece_map[0]), tags_of(piece_map[1]));
   occ::synchronize();
 
-  auto groups = add_scene_groups(c, edge, core_volumes, outer_volumes, needle_volumes);
+  auto groups = add_scene_groups(spec.needle_mesh_volume, edge, core_volumes, outer_volumes, needle_volumes);
   std::vector<int> edges;  // the cavity's sharp edges
-  const int size_field = add_size_field(c, tip, edge, core, groups["cavity"], info.grading, edges);
+  const int size_field = add_size_field(spec, tip, edge, core, groups["cavity"], info.grading, edges);
   gmsh::model::mesh::field::setAsBackgroundMesh(size_field);
   gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
   gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
-  gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", static_cast<double>(c.integer("tissue.curvature_elements")));
-  set_mesh_options(c);
-  info.high_order_optimisation = generate_and_write(c, msh_file, [&] {
+  gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", static_cast<double>(spec.curvature_elements));
+  set_mesh_options(spec);
+  info.high_order_optimisation = generate_and_write(spec, msh_file, [&] {
     DimTags edge_entities, cavity_entities;
     for (int e : edges) edge_entities.push_back({1, e});
     for (int s : groups["cavity"]) cavity_entities.push_back({2, s});
@@ -369,59 +368,57 @@ SceneMeshInfo mesh_brain_tip(const Case& c, const std::filesystem::path& msh_fil
   return info;
 }
 
-SceneMeshInfo mesh_block(const Case& c, const std::filesystem::path& msh_file) {
-  const auto size = c.reals("block.size_mm");
+SceneMeshInfo mesh_block(const MeshSpec& spec, const std::filesystem::path& msh_file) {
+  const std::array<double, 3>& size = spec.block_size_mm;
   const int box = occ::addBox(0, 0, 0, size[0], size[1], size[2]);
   occ::synchronize();
   const std::array<double, 3> lo{0, 0, 0}, hi{size[0], size[1], size[2]};
   for (int s : surfaces_of({box})) add_physical(2, {s}, box_face_of(s, lo, hi));
   add_physical(3, {box}, "tissue");
-  const double h = c.real("block.element_mm") * refinement_size_factor(c);
+  const double h = spec.block_element_mm * refinement_size_factor(spec);
   gmsh::option::setNumber("Mesh.MeshSizeMin", h);
   gmsh::option::setNumber("Mesh.MeshSizeMax", h);
-  set_mesh_options(c);
+  set_mesh_options(spec);
   SceneMeshInfo info;
-  info.grading.refinement_level = static_cast<int>(c.integer("mesh.refinement_level"));
-  info.high_order_optimisation = generate_and_write(c, msh_file);
+  info.grading.refinement_level = static_cast<int>(spec.refinement_level);
+  info.high_order_optimisation = generate_and_write(spec, msh_file);
   info.domain_volume_m3 = size[0] * size[1] * size[2] / std::pow(kMmPerM, 3);
   return info;
 }
 
 // The mesh scene's user geometry (a gmsh .geo in millimetres, with its physical groups and
 // element sizes), meshed at mesh.order with every size scaled by 2^-mesh.refinement_level.
-SceneMeshInfo mesh_user_geometry(const Case& c, const std::filesystem::path& msh_file) {
-  const auto geo = c.path("scene.mesh_file");
+SceneMeshInfo mesh_user_geometry(const MeshSpec& spec, const std::filesystem::path& msh_file) {
+  const std::filesystem::path& geo = spec.scene_mesh_file;
   try {
     gmsh::open(geo.string());
   } catch (const std::string& message) {
-    throw c.error("scene.mesh_file", fmt::format("gmsh cannot read '{}': {}", geo.string(), message));
+    throw case_error(spec.origin, "scene.mesh_file", fmt::format("gmsh cannot read '{}': {}", geo.string(), message));
   }
-  gmsh::option::setNumber("Mesh.MeshSizeFactor", refinement_size_factor(c));
-  set_mesh_options(c);
+  gmsh::option::setNumber("Mesh.MeshSizeFactor", refinement_size_factor(spec));
+  set_mesh_options(spec);
   SceneMeshInfo info;
-  info.grading.refinement_level = static_cast<int>(c.integer("mesh.refinement_level"));
-  info.high_order_optimisation = generate_and_write(c, msh_file);
+  info.grading.refinement_level = static_cast<int>(spec.refinement_level);
+  info.high_order_optimisation = generate_and_write(spec, msh_file);
   return info;
 }
 
 }  // namespace
 
-SceneMeshInfo generate_scene_mesh(const Case& c, const std::filesystem::path& msh_file, std::FILE* progress) {
-  if (generates_brain_tip_scene(c))
-    require_valid_brain_tip_scene(parse_needle_tip_spec(c), parse_tissue_cube_spec(c));
+SceneMeshInfo generate_scene_mesh(const MeshSpec& spec, const std::filesystem::path& msh_file, std::FILE* progress) {
+  if (generates_brain_tip_scene(spec)) require_valid_brain_tip_scene(spec.needle_tip, spec.tissue);
   if (progress) {
-    fmt::print(progress, "mesh: meshing the {} scene with gmsh (mesh.refinement_level {})\n", c.text("scene.kind"),
-               c.integer("mesh.refinement_level"));
+    fmt::print(progress, "mesh: meshing the {} scene with gmsh (mesh.refinement_level {})\n",
+               scene_kind_name(spec.scene_kind), spec.refinement_level);
     std::fflush(progress);
   }
   const auto start = std::chrono::steady_clock::now();
   SceneMeshInfo info;
   GmshSession session("needlefem");
   GmshSession::guarded([&] {
-    const std::string kind = c.text("scene.kind");
-    info = kind == "block" ? mesh_block(c, msh_file)
-           : kind == "mesh" ? mesh_user_geometry(c, msh_file)
-                            : mesh_brain_tip(c, msh_file);
+    info = spec.scene_kind == SceneKind::block  ? mesh_block(spec, msh_file)
+           : spec.scene_kind == SceneKind::mesh ? mesh_user_geometry(spec, msh_file)
+                                                : mesh_brain_tip(spec, msh_file);
   });
   info.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return info;

@@ -18,8 +18,8 @@
 
 namespace needlefem {
 
-class Case;
 struct CompliantTip;
+struct MeshSpec;
 struct NeedleTip;
 struct NeedleTipSpec;
 struct TissueCubeSpec;
@@ -62,16 +62,16 @@ struct SceneMeshInfo {
   std::string cache_note;   // why the cache was off or bypassed
 };
 
-// The cache entry point (mesh/mesh_cache.cpp): writes the case's scene mesh to msh_file, from
+// The cache entry point (mesh/mesh_cache.cpp): writes the scene mesh of the case's mesh spec to msh_file, from
 // the mesh cache when it holds the scene, else meshed with generate_scene_mesh and published
 // there first. Throws CaseError for impossible geometry (naming the violated rule) and
 // std::runtime_error when gmsh fails. On `progress` (nullptr: none), a line when gmsh starts and
 // one when the mesh is written: fine levels mesh for long with nothing else to show.
-SceneMeshInfo build_scene_mesh(const Case& c, const std::filesystem::path& msh_file, std::FILE* progress);
+SceneMeshInfo build_scene_mesh(const MeshSpec& spec, const std::filesystem::path& msh_file, std::FILE* progress);
 
 // Meshes the case's scene with gmsh and writes it to msh_file (the mesher itself, without the
 // cache); on `progress` the line when gmsh starts.
-SceneMeshInfo generate_scene_mesh(const Case& c, const std::filesystem::path& msh_file, std::FILE* progress);
+SceneMeshInfo generate_scene_mesh(const MeshSpec& spec, const std::filesystem::path& msh_file, std::FILE* progress);
 
 // Building blocks for other meshers of the needle alone (prbm_check/), inside a GmshSession:
 // adds paper 000's compliant tip (millimetres, axis +z, rear face z = 0) to the current model as

@@ -6,7 +6,7 @@
 #include <map>
 #include <numbers>
 
-#include "case/case.hpp"
+#include "case/specs/mesh_spec.hpp"
 #include "geometry/needle_tip.hpp"
 
 namespace needlefem {
@@ -107,10 +107,10 @@ int threshold_field(int distance_field, double size_min, double size_max, double
 // Adds the edge and surface fields (see above) and returns them; fills the targets in `grading`
 // and the sharp edges' curve tags in `edges`.
 // `sharp_edges`: the cavity's sharp curves, `edge_radius_mm`: their rounding ρ (0: none).
-std::vector<int> add_needle_grading(const Case& c, const std::vector<int>& sharp_edges, double edge_radius_mm,
+std::vector<int> add_needle_grading(const MeshSpec& spec, const std::vector<int>& sharp_edges, double edge_radius_mm,
                                     const std::vector<int>& cavity, NeedleGrading& grading, std::vector<int>& edges) {
   namespace field = gmsh::model::mesh::field;
-  const double factor = refinement_size_factor(c), h_core = c.real("tissue.core_element_mm");
+  const double factor = refinement_size_factor(spec), h_core = spec.tissue.core_element_mm;
   grading.core_mm = h_core;
   grading.grading_distance_mm = h_core / kGrowth;
   grading.surface_target_mm = kSurfaceSizePerCore * h_core * factor;
@@ -150,18 +150,18 @@ std::vector<int> add_needle_grading(const Case& c, const std::vector<int>& sharp
 
 }  // namespace
 
-double refinement_size_factor(const Case& c) {
-  return std::ldexp(1.0, -static_cast<int>(c.integer("mesh.refinement_level")));
+double refinement_size_factor(const MeshSpec& spec) {
+  return std::ldexp(1.0, -static_cast<int>(spec.refinement_level));
 }
 
 // The element size field: core_element inside the core box (its faces included), outer_element
 // outside, the compliant tip's neck annulus, and the grading towards the needle's edges and
 // surface (add_needle_grading). Returns the field; `edges` gets the cavity's sharp curves.
-int add_size_field(const Case& c, const NeedleTip& tip, double edge, double core, const std::vector<int>& cavity,
+int add_size_field(const MeshSpec& spec, const NeedleTip& tip, double edge, double core, const std::vector<int>& cavity,
                    NeedleGrading& grading, std::vector<int>& edges) {
   const int box_field = gmsh::model::mesh::field::add("Box");
-  gmsh::model::mesh::field::setNumber(box_field, "VIn", c.real("tissue.core_element_mm"));
-  gmsh::model::mesh::field::setNumber(box_field, "VOut", c.real("tissue.outer_element_mm"));
+  gmsh::model::mesh::field::setNumber(box_field, "VIn", spec.tissue.core_element_mm);
+  gmsh::model::mesh::field::setNumber(box_field, "VOut", spec.tissue.outer_element_mm);
   const double pad = 1e-6 * edge;
   gmsh::model::mesh::field::setNumber(box_field, "XMin", -core / 2 - pad);
   gmsh::model::mesh::field::setNumber(box_field, "XMax", core / 2 + pad);
@@ -175,9 +175,9 @@ int add_size_field(const Case& c, const NeedleTip& tip, double edge, double core
     // elements of the neck diameter (reported in the mesh report's case echo via these keys).
     const auto& n = tip.compliant;
     const int neck_field = gmsh::model::mesh::field::add("Box");
-    const double neck_size = std::min(c.real("tissue.core_element_mm"), n.neck_diameter * kMmPerM);
+    const double neck_size = std::min(spec.tissue.core_element_mm, n.neck_diameter * kMmPerM);
     gmsh::model::mesh::field::setNumber(neck_field, "VIn", neck_size);
-    gmsh::model::mesh::field::setNumber(neck_field, "VOut", c.real("tissue.outer_element_mm"));
+    gmsh::model::mesh::field::setNumber(neck_field, "VOut", spec.tissue.outer_element_mm);
     const double reach = n.radius * kMmPerM;
     gmsh::model::mesh::field::setNumber(neck_field, "XMin", -reach);
     gmsh::model::mesh::field::setNumber(neck_field, "XMax", reach);
@@ -189,13 +189,13 @@ int add_size_field(const Case& c, const NeedleTip& tip, double edge, double core
     gmsh::model::mesh::field::setNumbers(size_field, "FieldsList", {double(box_field), double(neck_field)});
   }
   if (tip.kind != NeedleTip::Kind::Compliant) {
-    const double edge_um = c.real("needle.edge_radius_um");
+    const double edge_um = spec.needle_edge_radius_um;
     const bool bevel = tip.kind == NeedleTip::Kind::Bevel, rounded = bevel && tip.bevel.rounded();
     const std::vector<int> sharp = rounded ? std::vector<int>{}
                                    : bevel ? sharp_cavity_curves(cavity)
                                            : sharp_cad_curves(cavity);
     const double rho_mm = bevel ? std::min(tip.bevel.fillet * kMmPerM, edge_um / kMmPerM) : edge_um / kMmPerM;
-    std::vector<int> size_fields = add_needle_grading(c, sharp, rho_mm, cavity, grading, edges);
+    std::vector<int> size_fields = add_needle_grading(spec, sharp, rho_mm, cavity, grading, edges);
     size_fields.push_back(size_field);
     size_field = gmsh::model::mesh::field::add("Min");
     gmsh::model::mesh::field::setNumbers(size_field, "FieldsList",

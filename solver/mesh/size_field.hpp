@@ -13,17 +13,17 @@
 
 namespace needlefem {
 
-class Case;
+struct MeshSpec;
 struct NeedleTip;
 
 // 2^-L for mesh.refinement_level L: the factor every refined size carries.
-double refinement_size_factor(const Case& c);
+double refinement_size_factor(const MeshSpec& spec);
 
 // Adds the element size field of a brain-tip scene with cube edge `edge` and core width `core`
 // (mm) whose cavity surfaces are `cavity`, and returns its tag (for setAsBackgroundMesh). Fills
 // the sizes aimed at in `grading` and the cavity's sharp curves, which the edge grading follows,
 // in `edges`.
-int add_size_field(const Case& c, const NeedleTip& tip, double edge, double core, const std::vector<int>& cavity,
+int add_size_field(const MeshSpec& spec, const NeedleTip& tip, double edge, double core, const std::vector<int>& cavity,
                    NeedleGrading& grading, std::vector<int>& edges);
 
 // Size statistics of the tissue tets with a corner node on the given entities (after meshing).

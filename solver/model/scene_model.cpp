@@ -7,7 +7,7 @@
 #include <fmt/ranges.h>
 
 #include "case/case.hpp"
-#include "case/schema.hpp"
+#include "case/specs/mesh_spec.hpp"
 #include "model/read_msh.hpp"
 
 namespace needlefem {
@@ -18,16 +18,16 @@ namespace {
 const std::vector<std::string> kGroupListKeys{"groups.fixed", "groups.roller", "groups.displaced", "groups.pressure"};
 
 // Every group a mesh-scene key names must be a surface group (dimension 2) of the mesh.
-void require_scene_groups(const Case& c, const TetMesh& mesh) {
+void require_scene_groups(const Case& c, const std::filesystem::path& mesh_file, const TetMesh& mesh) {
   const auto require_surface = [&](const std::string& key, const std::string& group) {
     if (mesh.surface_faces.count(group)) return;
     if (mesh.region_index(group) >= 0)
       throw c.error(key, fmt::format("'{}' is a volume group (dimension 3) of {}; a condition needs a surface group "
-                                     "(dimension 2)", group, c.path("scene.mesh_file").string()));
+                                     "(dimension 2)", group, mesh_file.string()));
     std::vector<std::string> surfaces;
     for (const auto& [name, faces] : mesh.surface_faces) surfaces.push_back(name);
     throw c.error(key, fmt::format("{} has no surface group (dimension 2) named '{}'; its surface groups are: {}",
-                                   c.path("scene.mesh_file").string(), group,
+                                   mesh_file.string(), group,
                                    surfaces.empty() ? std::string("none") : fmt::format("{}", fmt::join(surfaces, ", "))));
   };
   for (const auto& key : kGroupListKeys)
@@ -39,50 +39,44 @@ void require_scene_groups(const Case& c, const TetMesh& mesh) {
   require_surface("obstacle.group", c.text("obstacle.group"));
 }
 
-// Keys that only the mesh scene reads: given in another scene, they would be ignored silently.
-bool mesh_scene_key(const std::string& key) {
-  for (const char* prefix : {"groups.", "displacement.", "pressure.", "obstacle.", "loading.history_"})
-    if (key.rfind(prefix, 0) == 0) return true;
-  return false;
-}
-
-void require_mesh_scene_keys_unused(const Case& c) {
-  for (const auto& spec : case_schema())
-    if (mesh_scene_key(spec.key) && c.given(spec.key))
-      throw c.error(spec.key, fmt::format("applies to scene.kind = \"mesh\" only (this case's is \"{}\")",
-                                          c.text("scene.kind")));
+// The keys only a mesh scene reads, given in another scene, would be ignored silently.
+void require_mesh_scene_keys_unused(const MeshSpec& spec) {
+  if (spec.mesh_scene_keys_given.empty()) return;
+  throw case_error(spec.origin, spec.mesh_scene_keys_given.front(),
+                   fmt::format("applies to scene.kind = \"mesh\" only (this case's is \"{}\")",
+                               scene_kind_name(spec.scene_kind)));
 }
 
 }  // namespace
 
-SceneModel load_scene_model(const Case& c, const std::filesystem::path& out_dir, std::FILE* progress) {
+SceneModel load_scene_model(const Case& c, const MeshSpec& spec, const std::filesystem::path& out_dir,
+                            std::FILE* progress) {
   SceneModel scene;
-  const auto user_file = c.path("scene.mesh_file");
-  const bool mesh_scene = c.text("scene.kind") == "mesh";
-  if (!mesh_scene) require_mesh_scene_keys_unused(c);
+  const std::filesystem::path& user_file = spec.scene_mesh_file;
+  const bool mesh_scene = spec.scene_kind == SceneKind::mesh;
+  const auto file_error = [&](const std::string& reason) { return case_error(spec.origin, "scene.mesh_file", reason); };
+  if (!mesh_scene) require_mesh_scene_keys_unused(spec);
   if (mesh_scene && user_file.empty())
-    throw c.error("scene.mesh_file", "scene.kind = \"mesh\" needs the user's gmsh mesh (.msh) or geometry (.geo)");
+    throw file_error("scene.kind = \"mesh\" needs the user's gmsh mesh (.msh) or geometry (.geo)");
   if (!user_file.empty() && !std::filesystem::exists(user_file))
-    throw c.error("scene.mesh_file", fmt::format("file '{}' not found", user_file.string()));
+    throw file_error(fmt::format("file '{}' not found", user_file.string()));
   const bool geometry_file = user_file.extension() == ".geo";
-  if (geometry_file && !mesh_scene)
-    throw c.error("scene.mesh_file", "a .geo is meshed for scene.kind = \"mesh\" only; give a .msh");
+  if (geometry_file && !mesh_scene) throw file_error("a .geo is meshed for scene.kind = \"mesh\" only; give a .msh");
   if (!user_file.empty() && !geometry_file) {
     scene.msh_file = user_file;
     scene.user_mesh = true;
   } else {
     scene.msh_file = out_dir / "mesh.msh";
-    scene.info = build_scene_mesh(c, scene.msh_file, progress);
+    scene.info = build_scene_mesh(spec, scene.msh_file, progress);
   }
   if (scene.user_mesh) require_readable_msh(scene.msh_file);
   scene.mesh = read_msh(scene.msh_file);
   // The case's element order describes the run; a user mesh of the other order would silently
   // make it a run of that order instead.
-  if (const long order = scene.mesh.nodes_per_tet == 10 ? 2 : 1; scene.user_mesh && order != c.integer("mesh.order"))
-    throw c.error("scene.mesh_file", fmt::format("'{}' has {}-node (order {}) tetrahedra but mesh.order = {}",
-                                                 scene.msh_file.string(), scene.mesh.nodes_per_tet, order,
-                                                 c.integer("mesh.order")));
-  if (mesh_scene) require_scene_groups(c, scene.mesh);
+  if (const long order = scene.mesh.nodes_per_tet == 10 ? 2 : 1; scene.user_mesh && order != spec.order)
+    throw file_error(fmt::format("'{}' has {}-node (order {}) tetrahedra but mesh.order = {}", scene.msh_file.string(),
+                                 scene.mesh.nodes_per_tet, order, spec.order));
+  if (mesh_scene) require_scene_groups(c, spec.scene_mesh_file, scene.mesh);
   scene.quality = measure_quality(scene.mesh);
   return scene;
 }

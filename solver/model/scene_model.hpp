@@ -13,6 +13,7 @@
 namespace needlefem {
 
 class Case;
+struct MeshSpec;
 
 struct SceneModel {
   TetMesh mesh;
@@ -23,13 +24,15 @@ struct SceneModel {
   CavityRounding cavity_rounding;  // what moved the cavity onto the needle (run/run_case.hpp)
 };
 
-// Meshes the scene into out_dir/mesh.msh (or reads scene.mesh_file; a .geo of the mesh scene is
-// meshed there too), saying so on `progress` (build_scene_mesh; nullptr: silent). Throws CaseError
+// Meshes the scene of the case's mesh spec `spec` (parse_mesh_spec) into out_dir/mesh.msh (or
+// reads scene.mesh_file; a .geo of the mesh scene is meshed there too), saying so on `progress` (build_scene_mesh; nullptr: silent). Throws CaseError
 // for bad input (also: a group the mesh scene's keys name that is not a surface group of the
 // mesh, and mesh-scene keys given in another scene) and std::runtime_error for meshing failures;
 // inverted elements are reported in `quality`, and require_valid_elements() turns them into an
 // error.
-SceneModel load_scene_model(const Case& c, const std::filesystem::path& out_dir, std::FILE* progress);
+// The mesh scene's group keys ([groups], [obstacle]) are read from `c`.
+SceneModel load_scene_model(const Case& c, const MeshSpec& spec, const std::filesystem::path& out_dir,
+                            std::FILE* progress);
 void require_valid_elements(const SceneModel& scene);
 
 }  // namespace needlefem

@@ -178,7 +178,7 @@ std::string hinge_outputs(nlohmann::json& summary, const RunOptions& options, co
 }  // namespace
 
 bool head_turns_in_tissue(const RunSpecs& specs) {
-  return needle_in_contact(specs) && specs.needle_tip.kind == NeedleKind::compliant;
+  return needle_in_contact(specs) && specs.mesh.needle_tip.kind == NeedleKind::compliant;
 }
 
 nlohmann::json run_hinged_case(const Case& c, const RunSpecs& specs, const RunOptions& options,

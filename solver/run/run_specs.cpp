@@ -10,8 +10,7 @@ RunSpecs parse_run_specs(const Case& c) {
   return {.scene_kind = parse_scene_kind(c),
           .mechanics = parse_mechanics_spec(c),
           .contact = parse_contact_spec(c),
-          .needle_tip = parse_needle_tip_spec(c),
-          .tissue_cube = parse_tissue_cube_spec(c),
+          .mesh = parse_mesh_spec(c),
           .needle_contact = parse_needle_contact_spec(c),
           .obstacle = parse_obstacle_spec(c),
           .loading = parse_loading_spec(c),
@@ -31,8 +30,8 @@ contact::ContactParameters run_contact_parameters(const RunSpecs& specs, double 
 }
 
 contact::NeedleSpecs run_needle_specs(const Case& c, const RunSpecs& specs) {
-  return {.tip = specs.needle_tip,
-          .tissue = specs.tissue_cube,
+  return {.tip = specs.mesh.needle_tip,
+          .tissue = specs.mesh.tissue,
           .contact = specs.needle_contact,
           .motion = parse_motion_spec(c)};
 }

@@ -1,14 +1,14 @@
 // The case parsed once into the specs of the stages a run goes through (run_case.cpp; `needlefem
 // mesh` shows its scene, load_run_scene): each stage gets its own spec rather than the case and
-// its keys. Keys no spec covers yet (meshing, steering) are still read from the Case where they
-// are used.
+// its keys. Keys no spec covers yet (steering, the mesh scene's group checks) are still read from
+// the Case where they are used.
 #pragma once
 
 #include "case/specs/contact_spec.hpp"
 #include "case/specs/integration_spec.hpp"
 #include "case/specs/loading_spec.hpp"
 #include "case/specs/mechanics_spec.hpp"
-#include "case/specs/needle_tip_spec.hpp"
+#include "case/specs/mesh_spec.hpp"
 #include "case/specs/output_spec.hpp"
 #include "case/specs/pressure_spec.hpp"
 #include "case/specs/scene_kind.hpp"
@@ -28,8 +28,7 @@ struct RunSpecs {
   SceneKind scene_kind;
   MechanicsSpec mechanics;
   ContactSpec contact;
-  NeedleTipSpec needle_tip;
-  TissueCubeSpec tissue_cube;  // a CAD tip's rules check the needle against it
+  MeshSpec mesh;  // with the needle tip and the tissue cube a CAD tip's rules check it against
   NeedleContactSpec needle_contact;
   ObstacleSpec obstacle;
   LoadingSpec loading;

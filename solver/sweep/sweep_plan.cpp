@@ -12,6 +12,7 @@
 #include "case/case.hpp"
 #include "case/mesh_resolution.hpp"
 #include "case/schema.hpp"
+#include "case/specs/mesh_spec.hpp"
 
 namespace needlefem::sweep {
 
@@ -278,8 +279,9 @@ std::string point_name(const std::vector<std::string>& labels, const std::vector
 }
 
 std::vector<RuleViolation> scene_violations(const Case& c) {
-  if (!generates_brain_tip_scene(c)) return {};
-  return brain_tip_scene_violations(parse_tissue_cube_spec(c), needle_tip_from_spec(parse_needle_tip_spec(c)));
+  const MeshSpec mesh = parse_mesh_spec(c);
+  if (!generates_brain_tip_scene(mesh)) return {};
+  return brain_tip_scene_violations(mesh.tissue, needle_tip_from_spec(mesh.needle_tip));
 }
 
 // scene.mesh_file made absolute: relative to the file that named it.

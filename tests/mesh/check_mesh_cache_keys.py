@@ -1,10 +1,10 @@
 #!/usr/bin/python3
-"""Every case key the scene mesher reads is part of the mesh cache's key (kMeshKeys in
-solver/mesh/mesh_cache.cpp), or is one the cache handles otherwise: a key missing there would let
-a changed value find the mesh of the old one.
+"""Every case key the scene mesher reads is part of the mesh cache's key (the keys
+mesh_cache_key_text in solver/mesh/mesh_cache.cpp names), or is one the cache handles otherwise: a
+key missing there would let a changed value find the mesh of the old one.
 
 Reads the sources: the keys read as c.text("..."), c.real("..."), ... or parse_choice(c, "...")
-in the mesher's files.
+in the parsers of the mesher's spec and in the mesher's own files.
 
 usage: check_mesh_cache_keys.py SOURCE_DIR
 """
@@ -12,13 +12,22 @@ import re
 import sys
 from pathlib import Path
 
-# The files whose case reads decide the scene mesh: every source of solver/mesh/ but the cache
-# itself (the scene mesher, its size field, the CAD tip it imports), and the parser of the needle
-# tip and tissue cube it builds and checks the scene rules on (case/specs/needle_tip_spec.cpp). A
-# file split out of the mesher is read without being listed here.
+# The files whose case reads decide the scene mesh: the parser of the mesher's spec
+# (case/specs/mesh_spec.cpp) with the spec parsers it includes (the needle tip and tissue cube, the
+# scene kind), and every source of solver/mesh/ but the cache itself (the scene mesher, its size
+# field, the CAD tip it imports), which take the spec and should read no key themselves. A parser
+# the mesh spec starts to include, or a file split out of the mesher, is read without being listed
+# here.
+SPEC_INCLUDE = re.compile(r'#include "(case/specs/[a-z_]+)\.hpp"')
+
+
 def mesher_files(source):
+    parser = source / "solver/case/specs/mesh_spec.cpp"
+    specs = {parser}
+    for header in [source / "solver/case/specs/mesh_spec.hpp", parser]:
+        specs |= {source / "solver" / (name + ".cpp") for name in SPEC_INCLUDE.findall(header.read_text())}
     mesh = sorted(p for p in (source / "solver/mesh").glob("*.cpp") if p.name != "mesh_cache.cpp")
-    return mesh + [source / "solver/case/specs/needle_tip_spec.cpp"]
+    return sorted(p for p in specs if p.exists()) + mesh
 # Keys those files read that the key leaves out, and why.
 HANDLED_OTHERWISE = {
     "scene.mesh_file": "bypasses the cache",
@@ -34,8 +43,8 @@ READ = re.compile(r'(?:\bc\.(?:text|real|reals|integer|flag|texts|path|given|has
 def main():
     source = Path(sys.argv[1])
     cache = (source / "solver/mesh/mesh_cache.cpp").read_text()
-    start = cache.index("kMeshKeys[]")
-    listed = set(re.findall(r'"([a-z_]+\.[a-z_0-9]+)"', cache[start:cache.index("};", start)]))
+    start = cache.index("std::string mesh_cache_key_text(")
+    listed = set(re.findall(r'"([a-z_]+\.[a-z_0-9]+)"', cache[start:cache.index("\n}\n", start)]))
     read = set()
     for path in mesher_files(source):
         read |= set(READ.findall(path.read_text()))

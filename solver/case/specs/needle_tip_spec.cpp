@@ -4,7 +4,6 @@
 #include <utility>
 
 #include "case/specs/choice.hpp"
-#include "case/specs/scene_kind.hpp"
 
 namespace needlefem {
 
@@ -37,10 +36,6 @@ TissueCubeSpec parse_tissue_cube_spec(const Case& c) {
           .core_width_mm = c.real("tissue.core_width_mm"),
           .core_element_mm = c.real("tissue.core_element_mm"),
           .outer_element_mm = c.real("tissue.outer_element_mm")};
-}
-
-bool generates_brain_tip_scene(const Case& c) {
-  return parse_scene_kind(c) == SceneKind::brain_tip && c.path("scene.mesh_file").empty();
 }
 
 }  // namespace needlefem

@@ -35,7 +35,8 @@ struct NeedleTipSpec {
 
 NeedleTipSpec parse_needle_tip_spec(const Case& c);
 
-// The brain-tip scene's tissue cube and its refined core (tissue.*), which the tip must fit.
+// The brain-tip scene's tissue cube and its refined core (tissue.*), which the tip must fit, with
+// their element sizes (the mesh stage's: case/specs/mesh_spec.hpp holds it).
 struct TissueCubeSpec {
   double cube_edge_mm;
   double core_width_mm;
@@ -44,9 +45,5 @@ struct TissueCubeSpec {
 };
 
 TissueCubeSpec parse_tissue_cube_spec(const Case& c);
-
-// True when the mesher builds the brain-tip scene around the tip (scene.kind = "brain-tip" without
-// a scene.mesh_file): the scene whose geometric rules a case must keep.
-bool generates_brain_tip_scene(const Case& c);
 
 }  // namespace needlefem

@@ -7,10 +7,20 @@
 
 namespace needlefem {
 
-SceneKind parse_scene_kind(const Case& c) {
-  return parse_choice(c, "scene.kind",
-                      std::array{std::pair{"brain-tip", SceneKind::brain_tip}, std::pair{"block", SceneKind::block},
-                                 std::pair{"mesh", SceneKind::mesh}});
+namespace {
+
+// scene.kind's choices (schema.cpp) with their enumerators.
+const std::array kSceneKinds{std::pair{"brain-tip", SceneKind::brain_tip}, std::pair{"block", SceneKind::block},
+                             std::pair{"mesh", SceneKind::mesh}};
+
+}  // namespace
+
+SceneKind parse_scene_kind(const Case& c) { return parse_choice(c, "scene.kind", kSceneKinds); }
+
+std::string scene_kind_name(SceneKind kind) {
+  for (const auto& [name, enumerator] : kSceneKinds)
+    if (enumerator == kind) return name;
+  throw std::logic_error("scene kind without a name");
 }
 
 }  // namespace needlefem
