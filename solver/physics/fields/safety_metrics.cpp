@@ -14,8 +14,6 @@ namespace needlefem::fields {
 namespace {
 
 constexpr int kVoxelsPerRadius = 4;         // lattice spacing s = ℓ/4
-constexpr int kReach = 7;                   // voxel offsets within the 27 blocks around a voxel's block
-constexpr int kWidth = 2 * kReach + 1;
 constexpr long long kKeyBias = 1LL << 20;   // lattice indices from -2^20 to 2^20
 
 bool selected(std::span<const char> mask, std::size_t q) { return mask.empty() || mask[q]; }
@@ -26,26 +24,19 @@ long long key_of(const std::array<long long, 3>& i) {
   return ((i[0] + kKeyBias) << 42) | ((i[1] + kKeyBias) << 21) | (i[2] + kKeyBias);
 }
 
-int offset_index(long long i, long long j, long long k) {
-  return static_cast<int>(((i + kReach) * kWidth + (j + kReach)) * kWidth + (k + kReach));
-}
-
 }  // namespace
 
 BallAverager::BallAverager(std::span<const Point3> positions, std::span<const double> volumes,
                            std::span<const Tetrahedron> tissue, double radius_m)
-    : radius_(radius_m),
-      spacing_(radius_m / kVoxelsPerRadius),
-      positions_(positions.begin(), positions.end()),
-      volumes_(volumes.begin(), volumes.end()) {
+    : radius_(radius_m), spacing_(radius_m / kVoxelsPerRadius) {
   static_assert(kBlock == kVoxelsPerRadius, "a block's edge must be the ball's radius");
   if (!(radius_ > 0.0)) throw std::invalid_argument("critical distance: the ball radius must be positive");
   if (positions.size() != volumes.size()) throw std::invalid_argument("critical distance: one volume per point is needed");
   // Points by block, then by voxel inside the block.
   std::unordered_map<long long, int> block_at;
   std::vector<std::vector<std::pair<int, int>>> members;  // per block: (local voxel, point)
-  for (std::size_t q = 0; q < positions_.size(); ++q) {
-    const auto v = voxel_of(positions_[q]);
+  for (std::size_t q = 0; q < positions.size(); ++q) {
+    const auto v = voxel_of(positions[q]);
     const std::array<long long, 3> b{floor_div(v[0], kBlock), floor_div(v[1], kBlock), floor_div(v[2], kBlock)};
     for (long long i : b)
       if (std::abs(i) >= kKeyBias) throw std::invalid_argument("critical distance: the ball radius is too small for the tissue's extent");
@@ -58,14 +49,16 @@ BallAverager::BallAverager(std::span<const Point3> positions, std::span<const do
                                        (v[2] - kBlock * b[2]));
     members[it->second].emplace_back(local, static_cast<int>(q));
   }
+  point_of_slot_.reserve(positions.size());
   for (std::size_t b = 0; b < blocks_.size(); ++b) {
     Block& block = blocks_[b];
     std::stable_sort(members[b].begin(), members[b].end());
+    block.first.fill(static_cast<int>(point_of_slot_.size()));
     for (const auto& [local, q] : members[b]) {
-      block.points.push_back(q);
+      point_of_slot_.push_back(q);
       ++block.first[local + 1];
     }
-    for (int l = 0; l < kBlockVoxels; ++l) block.first[l + 1] += block.first[l];
+    for (int l = 0; l < kBlockVoxels; ++l) block.first[l + 1] += block.first[l] - block.first[0];
     int n = 0;
     for (long long i = -1; i <= 1; ++i)
       for (long long j = -1; j <= 1; ++j)
@@ -74,21 +67,36 @@ BallAverager::BallAverager(std::span<const Point3> positions, std::span<const do
           block.neighbours[n++] = found == block_at.end() ? -1 : found->second;
         }
   }
+  for (int q : point_of_slot_) {
+    positions_.push_back(positions[q]);
+    volumes_.push_back(volumes[q]);
+  }
   mark_centres_in_tissue(tissue, block_at);
+  plan_reach();
+}
+
+void BallAverager::plan_reach() {
   // In lattice units the ball around a voxel's centre has radius 4: a voxel at offset o is wholly
   // inside when its farthest corner is, outside when its nearest point is beyond 4.
-  offset_class_.assign(kWidth * kWidth * kWidth, 0);
   const double r2 = kVoxelsPerRadius * kVoxelsPerRadius;
-  for (int i = -kReach; i <= kReach; ++i)
-    for (int j = -kReach; j <= kReach; ++j)
-      for (int k = -kReach; k <= kReach; ++k) {
-        double near = 0.0, far = 0.0;
-        for (int o : {i, j, k}) {
-          near += std::pow(std::max(0.0, std::abs(o) - 0.5), 2);
-          far += std::pow(std::abs(o) + 0.5, 2);
-        }
-        offset_class_[offset_index(i, j, k)] = far <= r2 ? 1 : near <= r2 ? 2 : 0;
-      }
+  const auto split = [](int l) { return std::array<int, 3>{l / (kBlock * kBlock), (l / kBlock) % kBlock, l % kBlock}; };
+  for (int centre = 0; centre < kBlockVoxels; ++centre) {
+    const auto c = split(centre);
+    std::uint8_t neighbour = 0;
+    for (int bi = -1; bi <= 1; ++bi)
+      for (int bj = -1; bj <= 1; ++bj)
+        for (int bk = -1; bk <= 1; ++bk, ++neighbour)
+          for (int l = 0; l < kBlockVoxels; ++l) {
+            const auto v = split(l);
+            const std::array<int, 3> offset{kBlock * bi + v[0] - c[0], kBlock * bj + v[1] - c[1], kBlock * bk + v[2] - c[2]};
+            double near = 0.0, far = 0.0;
+            for (int o : offset) {
+              near += std::pow(std::max(0.0, std::abs(o) - 0.5), 2);
+              far += std::pow(std::abs(o) + 0.5, 2);
+            }
+            if (near <= r2) reach_[centre].push_back({neighbour, static_cast<std::uint8_t>(l), far <= r2});
+          }
+  }
 }
 
 void BallAverager::mark_centres_in_tissue(std::span<const Tetrahedron> tissue,
@@ -96,6 +104,8 @@ void BallAverager::mark_centres_in_tissue(std::span<const Tetrahedron> tissue,
   // Barycentric coordinates relative to the tetrahedron's size: a centre on a face shared by two
   // elements, or on the tissue's boundary, counts as inside.
   constexpr double kOnFace = 1e-10;
+  long long last_key = -1;  // keys are non-negative
+  int last_block = -1;
   for (const Tetrahedron& t : tissue) {
     const double volume = oriented_volume(t[0], t[1], t[2], t[3]);
     std::array<long long, 3> first, last;  // voxels whose centres (i + 1/2) s lie in the bounding box
@@ -108,9 +118,13 @@ void BallAverager::mark_centres_in_tissue(std::span<const Tetrahedron> tissue,
       for (long long j = first[1]; j <= last[1]; ++j)
         for (long long k = first[2]; k <= last[2]; ++k) {
           const std::array<long long, 3> b{floor_div(i, kBlock), floor_div(j, kBlock), floor_div(k, kBlock)};
-          const auto found = block_at.find(key_of(b));
-          if (found == block_at.end()) continue;  // no tissue point within ℓ: no maximum there
-          Block& block = blocks_[found->second];
+          if (const long long key = key_of(b); key != last_key) {  // the block changes every kBlock voxels of k
+            const auto found = block_at.find(key);
+            last_key = key;
+            last_block = found == block_at.end() ? -1 : found->second;
+          }
+          if (last_block < 0) continue;  // no tissue point within ℓ: no maximum there
+          Block& block = blocks_[last_block];
           const int local = static_cast<int>(((i - kBlock * b[0]) * kBlock + (j - kBlock * b[1])) * kBlock + (k - kBlock * b[2]));
           const std::uint64_t bit = std::uint64_t{1} << local;
           if (block.centres_in_tissue & bit) continue;
@@ -133,8 +147,10 @@ Point3 BallAverager::centre_of(const std::array<long long, 3>& voxel) const {
 }
 
 BallAverager::Sums BallAverager::accumulate(std::span<const double> field) const {
-  if (field.size() != positions_.size()) throw std::invalid_argument("critical distance: one value per point is needed");
+  if (field.size() != point_of_slot_.size()) throw std::invalid_argument("critical distance: one value per point is needed");
   Sums sums;
+  sums.field.resize(field.size());
+  for (std::size_t p = 0; p < field.size(); ++p) sums.field[p] = field[point_of_slot_[p]];
   const std::size_t n = blocks_.size() * kBlockVoxels;
   sums.weighted.assign(n, 0.0);
   sums.volume.assign(n, 0.0);
@@ -143,45 +159,37 @@ BallAverager::Sums BallAverager::accumulate(std::span<const double> field) const
     for (int l = 0; l < kBlockVoxels; ++l) {
       const std::size_t v = b * kBlockVoxels + l;
       for (int p = blocks_[b].first[l]; p < blocks_[b].first[l + 1]; ++p) {
-        const int q = blocks_[b].points[p];
-        sums.weighted[v] += volumes_[q] * field[q];
-        sums.volume[v] += volumes_[q];
-        sums.largest[v] = std::max(sums.largest[v], field[q]);
+        sums.weighted[v] += volumes_[p] * sums.field[p];
+        sums.volume[v] += volumes_[p];
+        sums.largest[v] = std::max(sums.largest[v], sums.field[p]);
       }
     }
   return sums;
 }
 
-double BallAverager::average(const Sums& sums, std::span<const double> field, int block, int voxel) const {
+double BallAverager::average(const Sums& sums, int block, int voxel) const {
   const Block& centre_block = blocks_[block];
-  const std::array<long long, 3> centre{kBlock * centre_block.index[0] + voxel / (kBlock * kBlock),
-                                        kBlock * centre_block.index[1] + (voxel / kBlock) % kBlock,
-                                        kBlock * centre_block.index[2] + voxel % kBlock};
-  const Point3 c = centre_of(centre);
+  const Point3 c = centre_of({kBlock * centre_block.index[0] + voxel / (kBlock * kBlock),
+                              kBlock * centre_block.index[1] + (voxel / kBlock) % kBlock,
+                              kBlock * centre_block.index[2] + voxel % kBlock});
   const double r2 = radius_ * radius_;
   double weighted = 0.0, volume = 0.0;
-  for (int nb : centre_block.neighbours) {
+  for (const Reach& r : reach_[voxel]) {
+    const int nb = centre_block.neighbours[r.neighbour];
     if (nb < 0) continue;
     const Block& other = blocks_[nb];
-    for (int l = 0; l < kBlockVoxels; ++l) {
-      if (other.first[l] == other.first[l + 1]) continue;
-      const long long i = kBlock * other.index[0] + l / (kBlock * kBlock) - centre[0];
-      const long long j = kBlock * other.index[1] + (l / kBlock) % kBlock - centre[1];
-      const long long k = kBlock * other.index[2] + l % kBlock - centre[2];
-      const unsigned char kind = offset_class_[offset_index(i, j, k)];
-      if (kind == 1) {
-        weighted += sums.weighted[std::size_t(nb) * kBlockVoxels + l];
-        volume += sums.volume[std::size_t(nb) * kBlockVoxels + l];
-      } else if (kind == 2) {
-        for (int p = other.first[l]; p < other.first[l + 1]; ++p) {
-          const int q = other.points[p];
-          const Point3& x = positions_[q];
-          const double dx = x[0] - c[0], dy = x[1] - c[1], dz = x[2] - c[2];
-          if (dx * dx + dy * dy + dz * dz > r2) continue;
-          weighted += volumes_[q] * field[q];
-          volume += volumes_[q];
-        }
-      }
+    if (other.first[r.voxel] == other.first[r.voxel + 1]) continue;
+    if (r.inside) {
+      weighted += sums.weighted[std::size_t(nb) * kBlockVoxels + r.voxel];
+      volume += sums.volume[std::size_t(nb) * kBlockVoxels + r.voxel];
+      continue;
+    }
+    for (int p = other.first[r.voxel]; p < other.first[r.voxel + 1]; ++p) {
+      const Point3& x = positions_[p];
+      const double dx = x[0] - c[0], dy = x[1] - c[1], dz = x[2] - c[2];
+      if (dx * dx + dy * dy + dz * dz > r2) continue;
+      weighted += volumes_[p] * sums.field[p];
+      volume += volumes_[p];
     }
   }
   return volume > 0.0 ? weighted / volume : 0.0;
@@ -194,7 +202,7 @@ LocatedValue BallAverager::average_around(const Point3& x, std::span<const doubl
     if (blocks_[block].index == b) {
       const int local = static_cast<int>(((v[0] - kBlock * b[0]) * kBlock + (v[1] - kBlock * b[1])) * kBlock +
                                          (v[2] - kBlock * b[2]));
-      return {average(accumulate(field), field, static_cast<int>(block), local), centre_of(v)};
+      return {average(accumulate(field), static_cast<int>(block), local), centre_of(v)};
     }
   throw std::invalid_argument("critical distance: no tissue point near the ball's centre");
 }
@@ -243,7 +251,7 @@ LocatedValue BallAverager::maximum(std::span<const double> field) const {
       std::size_t block_slot = kNone;
       for (int l = 0; l < kBlockVoxels; ++l) {
         if (!(block.centres_in_tissue & (std::uint64_t{1} << l))) continue;
-        const double value = average(sums, field, candidates[c].block, l);
+        const double value = average(sums, candidates[c].block, l);
         if (better(value, c * kBlockVoxels + l, block_best, block_slot)) {
           block_best = value;
           block_slot = c * kBlockVoxels + l;

@@ -73,27 +73,38 @@ class BallAverager {
   static constexpr int kBlockVoxels = kBlock * kBlock * kBlock;
   struct Block {
     std::array<long long, 3> index;
-    std::array<int, kBlockVoxels + 1> first{};  // the block's points, voxel by voxel (CSR)
-    std::vector<int> points;
+    // The block's points, voxel by voxel: voxel l's are slots first[l]..first[l + 1]-1 of the
+    // point arrays in block order (below).
+    std::array<int, kBlockVoxels + 1> first{};
     std::array<int, 27> neighbours{};           // block indices of the 27 blocks around, -1 if none
     std::uint64_t centres_in_tissue = 0;        // bit l: voxel l's centre lies in the tissue
   };
   struct Sums {
     std::vector<double> weighted, volume, largest;  // per block and voxel
+    std::vector<double> field;                      // per point in block order
+  };
+  // A voxel that a ball centred in voxel `centre` of a block reaches: voxel `voxel` of the
+  // neighbour block `neighbour` (an index into Block::neighbours), wholly inside the ball or cut
+  // by its rim. Per centre voxel, in the order of the neighbours, then of the voxels.
+  struct Reach {
+    std::uint8_t neighbour, voxel;
+    bool inside;
   };
   void mark_centres_in_tissue(std::span<const Tetrahedron> tissue, const std::unordered_map<long long, int>& block_at);
   std::array<long long, 3> voxel_of(const Point3& x) const;
   Point3 centre_of(const std::array<long long, 3>& voxel) const;
   Sums accumulate(std::span<const double> field) const;
-  double average(const Sums& sums, std::span<const double> field, int block, int voxel) const;
+  double average(const Sums& sums, int block, int voxel) const;
+  void plan_reach();  // fills reach_
 
   double radius_, spacing_;
+  // The points in block order: the point each slot holds, its position and volume. The averages
+  // read them in this order, so that a ball's rim reads contiguous memory.
+  std::vector<int> point_of_slot_;
   std::vector<Point3> positions_;
   std::vector<double> volumes_;
   std::vector<Block> blocks_;
-  // Per offset (-7..7)³ of a voxel from the centre voxel: 0 outside the ball, 1 wholly inside,
-  // 2 cut by its rim.
-  std::vector<unsigned char> offset_class_;
+  std::array<std::vector<Reach>, kBlockVoxels> reach_;  // per centre voxel
 };
 
 // Σ w_q over the points with f_q > limit (and mask true, when a mask is given), with the
