@@ -304,6 +304,10 @@ std::optional<double> Case::maybe_real(const std::string& key) const {
   if (!has(key)) return std::nullopt;
   return real(key);
 }
+std::optional<std::vector<double>> Case::maybe_reals(const std::string& key) const {
+  if (!has(key)) return std::nullopt;
+  return reals(key);
+}
 bool Case::given(const std::string& key) const { return values_->given.count(key) > 0; }
 
 std::filesystem::path Case::path(const std::string& key) const {

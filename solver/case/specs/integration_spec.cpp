@@ -1,7 +1,6 @@
 #include "case/specs/integration_spec.hpp"
 
 #include <array>
-#include <stdexcept>
 #include <utility>
 
 #include "case/case.hpp"
@@ -50,10 +49,6 @@ IntegrationSpec parse_integration_spec(const Case& c) {
   return spec;
 }
 
-const char* linear_solver_name(LinearSolver solver) {
-  for (const auto& [name, enumerator] : kLinearSolvers)
-    if (enumerator == solver) return name;
-  throw std::logic_error("linear_solver_name: an enumerator without a choice in kLinearSolvers");
-}
+const char* linear_solver_name(LinearSolver solver) { return choice_name(kLinearSolvers, solver); }
 
 }  // namespace needlefem

@@ -4,15 +4,6 @@
 
 namespace needlefem {
 
-namespace {
-
-std::optional<std::vector<double>> maybe_reals(const Case& c, const std::string& key) {
-  if (!c.has(key)) return std::nullopt;
-  return c.reals(key);
-}
-
-}  // namespace
-
 LoadingSpec parse_loading_spec(const Case& c) {
   const std::vector<double> translation = c.reals("displacement.translation_mm");  // three entries (schema)
   return {.origin = c.origin(),
@@ -20,11 +11,11 @@ LoadingSpec parse_loading_spec(const Case& c) {
           .motion_duration_s = c.real("motion.duration_s"),
           .ramp_s = c.real("loading.ramp_s"),
           .hold_s = c.real("loading.hold_s"),
-          .history_time_s = maybe_reals(c, "loading.history_time_s"),
-          .history_factor = maybe_reals(c, "loading.history_factor"),
+          .history_time_s = c.maybe_reals("loading.history_time_s"),
+          .history_factor = c.maybe_reals("loading.history_factor"),
           .translation_mm = {translation[0], translation[1], translation[2]},
           .translation_mm_given = c.given("displacement.translation_mm"),
-          .translation_history_mm = maybe_reals(c, "displacement.translation_history_mm")};
+          .translation_history_mm = c.maybe_reals("displacement.translation_history_mm")};
 }
 
 }  // namespace needlefem

@@ -2,7 +2,6 @@
 
 #include <array>
 #include <numeric>
-#include <stdexcept>
 #include <utility>
 
 #include <fmt/format.h>
@@ -70,11 +69,7 @@ std::vector<PronyTermSpec> custom_prony(const Case& c) {
 
 }  // namespace
 
-const std::string& material_preset_name(MaterialPreset preset) {
-  for (const auto& [name, enumerator] : kPresetNames)
-    if (enumerator == preset) return name;
-  throw std::logic_error("material_preset_name: unknown preset");
-}
+const std::string& material_preset_name(MaterialPreset preset) { return choice_name(kPresetNames, preset); }
 
 MaterialSpec parse_material_spec(const Case& c) {
   MaterialSpec spec{};

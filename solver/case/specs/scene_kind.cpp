@@ -17,10 +17,6 @@ const std::array kSceneKinds{std::pair{"brain-tip", SceneKind::brain_tip}, std::
 
 SceneKind parse_scene_kind(const Case& c) { return parse_choice(c, "scene.kind", kSceneKinds); }
 
-std::string scene_kind_name(SceneKind kind) {
-  for (const auto& [name, enumerator] : kSceneKinds)
-    if (enumerator == kind) return name;
-  throw std::logic_error("scene kind without a name");
-}
+std::string scene_kind_name(SceneKind kind) { return choice_name(kSceneKinds, kind); }
 
 }  // namespace needlefem
