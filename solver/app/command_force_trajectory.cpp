@@ -15,6 +15,7 @@
 
 #include "app/commands.hpp"
 #include "case/case.hpp"
+#include "case/specs/insertion_force_spec.hpp"
 #include "case/specs/needle_tip_spec.hpp"
 #include "insertion_force/deformation_energy.hpp"
 #include "insertion_force/force_trajectory.hpp"
@@ -23,17 +24,17 @@ namespace needlefem::app {
 
 namespace {
 
-insertion::InsertionForceParameters parameters_from_case(const Case& input) {
-  if (!input.has("insertion_force.rupture_force_n"))
+insertion::InsertionForceParameters parameters_from_spec(const Case& input, const InsertionForceSpec& spec) {
+  if (!spec.rupture_force_n)
     throw input.error("insertion_force.rupture_force_n", "needed: the tissue rupture force ending the deformation stage");
   insertion::InsertionForceParameters p;
   p.needle_radius_m = parse_needle_tip_spec(input).radius_mm * 1e-3;
-  p.fracture_toughness_j_per_m2 = input.real("insertion_force.fracture_toughness_j_per_m2");
-  p.rupture_force_n = input.real("insertion_force.rupture_force_n");
-  p.shaft_friction_n_per_m = input.real("insertion_force.shaft_friction_n_per_mm") * 1e3;
-  p.insertion_speed_m_per_s = input.real("motion.insertion_speed_mm_per_s") * 1e-3;
-  p.travel_m = input.real("insertion_force.travel_mm") * 1e-3;
-  p.sample_interval_s = input.real("insertion_force.sample_interval_s");
+  p.fracture_toughness_j_per_m2 = spec.fracture_toughness_j_per_m2;
+  p.rupture_force_n = *spec.rupture_force_n;
+  p.shaft_friction_n_per_m = spec.shaft_friction_n_per_mm * 1e3;
+  p.insertion_speed_m_per_s = spec.insertion_speed_mm_per_s * 1e-3;
+  p.travel_m = spec.travel_mm * 1e-3;
+  p.sample_interval_s = spec.sample_interval_s;
   return p;
 }
 
@@ -46,9 +47,10 @@ std::string typed(const std::filesystem::path& path) {
 }
 
 // The energy history must exist; if not, the error names the run that makes it.
-void require_energy_history(const Case& input, const std::filesystem::path& history) {
+void require_energy_history(const Case& input, const InsertionForceSpec& spec) {
+  const std::filesystem::path& history = spec.energy_history;
   if (std::filesystem::exists(history)) return;
-  const std::filesystem::path run_case = input.path("insertion_force.energy_case");
+  const std::filesystem::path& run_case = spec.energy_case;
   if (run_case.empty())
     throw input.error("insertion_force.energy_history",
                       fmt::format("{} does not exist; make it with `needlefem run CASE --out {}` of a brain-tip case "
@@ -63,7 +65,8 @@ void require_energy_history(const Case& input, const std::filesystem::path& hist
 }
 
 // How many times over the deformation stage extrapolates the energy run: warned or refused.
-double energy_extrapolation(const Case& input, const insertion::InsertionForceTrajectory& result,
+double energy_extrapolation(const Case& input, const InsertionForceSpec& spec,
+                            const insertion::InsertionForceTrajectory& result,
                             const insertion::InsertionForceParameters& parameters,
                             const insertion::DeformationEnergy& energy) {
   const double stage_end_m = result.ruptured ? result.rupture_displacement_m : parameters.travel_m;
@@ -71,8 +74,8 @@ double energy_extrapolation(const Case& input, const insertion::InsertionForceTr
   const std::string reach =
       fmt::format("the deformation stage runs to x = {:.3g} mm, {:.3g} times the energy run's last sample ({:.3g} mm)",
                   stage_end_m * 1e3, factor, energy.largest_sample_m * 1e3);
-  const double limit = input.real("insertion_force.extrapolation_limit_factor");
-  const double warn = input.real("insertion_force.extrapolation_warn_factor");
+  const double limit = spec.extrapolation_limit_factor;
+  const double warn = spec.extrapolation_warn_factor;
   if (factor > limit)
     throw input.error("insertion_force.extrapolation_limit_factor",
                       fmt::format("{}, more than {:g} times: sample it with a longer run (motion.duration_s of the "
@@ -85,12 +88,13 @@ double energy_extrapolation(const Case& input, const insertion::InsertionForceTr
 
 void run_force_trajectory(const CaseOptions& options) {
   const Case input = Case::load(options.case_file, options.overrides);
-  const std::filesystem::path history = input.path("insertion_force.energy_history");
+  const InsertionForceSpec spec = parse_insertion_force_spec(input);
+  const std::filesystem::path& history = spec.energy_history;
   if (history.empty())
     throw input.error("insertion_force.energy_history",
                       "needed: history.csv of a `needlefem run` of the brain-tip scene (its elastic energy)");
-  const insertion::InsertionForceParameters parameters = parameters_from_case(input);
-  require_energy_history(input, history);
+  const insertion::InsertionForceParameters parameters = parameters_from_spec(input, spec);
+  require_energy_history(input, spec);
   insertion::EnergySamples samples;
   insertion::DeformationEnergy energy;
   try {
@@ -106,7 +110,7 @@ void run_force_trajectory(const CaseOptions& options) {
     // The schema keeps every other parameter positive: only F_r <= 2 pi J_c r is left to reject.
     throw input.error("insertion_force.rupture_force_n", e.what());
   }
-  const double extrapolation = energy_extrapolation(input, result, parameters, energy);
+  const double extrapolation = energy_extrapolation(input, spec, result, parameters, energy);
   result.trajectory.source_case = input.to_toml();
 
   const std::filesystem::path out(options.out_dir);

@@ -85,9 +85,10 @@ void run_mesh(const CaseOptions& options) {
   const Case c = Case::load(options.case_file, options.overrides);
   const std::filesystem::path out(options.out_dir);
   std::filesystem::create_directories(out);
-  const SceneModel scene = run::load_run_scene(c, run::parse_run_specs(c), out, stderr);
+  const run::RunSpecs specs = run::parse_run_specs(c);
+  const SceneModel scene = run::load_run_scene(c, specs, out, stderr);
   // The configured part count, or 2 to show what METIS buys when the mesh runs serially.
-  const Partition partition = partition_tets(scene.mesh, std::max<int>(2, static_cast<int>(c.integer("mesh.partitions"))));
+  const Partition partition = partition_tets(scene.mesh, std::max<int>(2, static_cast<int>(specs.mesh.partitions)));
 
   {
     output::ResultFile file(out / "mesh.h5", scene.mesh, c.to_toml());

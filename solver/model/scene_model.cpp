@@ -7,6 +7,7 @@
 #include <fmt/ranges.h>
 
 #include "case/case.hpp"
+#include "case/specs/contact_spec.hpp"
 #include "case/specs/mesh_spec.hpp"
 #include "model/read_msh.hpp"
 
@@ -18,7 +19,8 @@ namespace {
 const std::vector<std::string> kGroupListKeys{"groups.fixed", "groups.roller", "groups.displaced", "groups.pressure"};
 
 // Every group a mesh-scene key names must be a surface group (dimension 2) of the mesh.
-void require_scene_groups(const Case& c, const std::filesystem::path& mesh_file, const TetMesh& mesh) {
+void require_scene_groups(const Case& c, const ObstacleSpec& obstacle, const std::filesystem::path& mesh_file,
+                          const TetMesh& mesh) {
   const auto require_surface = [&](const std::string& key, const std::string& group) {
     if (mesh.surface_faces.count(group)) return;
     if (mesh.region_index(group) >= 0)
@@ -32,11 +34,11 @@ void require_scene_groups(const Case& c, const std::filesystem::path& mesh_file,
   };
   for (const auto& key : kGroupListKeys)
     for (const auto& group : c.texts(key)) require_surface(key, group);
-  if (c.text("obstacle.kind") == "none") return;
-  if (c.text("obstacle.group").empty())
+  if (obstacle.kind == ObstacleKind::none) return;
+  if (obstacle.group.empty())
     throw c.error("obstacle.group", fmt::format("obstacle.kind = \"{}\" needs the surface group it touches",
-                                                c.text("obstacle.kind")));
-  require_surface("obstacle.group", c.text("obstacle.group"));
+                                                obstacle_kind_name(obstacle.kind)));
+  require_surface("obstacle.group", obstacle.group);
 }
 
 // The keys only a mesh scene reads, given in another scene, would be ignored silently.
@@ -49,8 +51,8 @@ void require_mesh_scene_keys_unused(const MeshSpec& spec) {
 
 }  // namespace
 
-SceneModel load_scene_model(const Case& c, const MeshSpec& spec, const std::filesystem::path& out_dir,
-                            std::FILE* progress) {
+SceneModel load_scene_model(const Case& c, const MeshSpec& spec, const ObstacleSpec& obstacle,
+                            const std::filesystem::path& out_dir, std::FILE* progress) {
   SceneModel scene;
   const std::filesystem::path& user_file = spec.scene_mesh_file;
   const bool mesh_scene = spec.scene_kind == SceneKind::mesh;
@@ -76,7 +78,7 @@ SceneModel load_scene_model(const Case& c, const MeshSpec& spec, const std::file
   if (const long order = scene.mesh.nodes_per_tet == 10 ? 2 : 1; scene.user_mesh && order != spec.order)
     throw file_error(fmt::format("'{}' has {}-node (order {}) tetrahedra but mesh.order = {}", scene.msh_file.string(),
                                  scene.mesh.nodes_per_tet, order, spec.order));
-  if (mesh_scene) require_scene_groups(c, spec.scene_mesh_file, scene.mesh);
+  if (mesh_scene) require_scene_groups(c, obstacle, spec.scene_mesh_file, scene.mesh);
   scene.quality = measure_quality(scene.mesh);
   return scene;
 }

@@ -14,6 +14,7 @@ namespace needlefem {
 
 class Case;
 struct MeshSpec;
+struct ObstacleSpec;
 
 struct SceneModel {
   TetMesh mesh;
@@ -30,9 +31,10 @@ struct SceneModel {
 // mesh, and mesh-scene keys given in another scene) and std::runtime_error for meshing failures;
 // inverted elements are reported in `quality`, and require_valid_elements() turns them into an
 // error.
-// The mesh scene's group keys ([groups], [obstacle]) are read from `c`.
-SceneModel load_scene_model(const Case& c, const MeshSpec& spec, const std::filesystem::path& out_dir,
-                            std::FILE* progress);
+// The mesh scene's group keys ([groups]) are read from `c`, its obstacle's group from `obstacle`
+// (parse_obstacle_spec).
+SceneModel load_scene_model(const Case& c, const MeshSpec& spec, const ObstacleSpec& obstacle,
+                            const std::filesystem::path& out_dir, std::FILE* progress);
 void require_valid_elements(const SceneModel& scene);
 
 }  // namespace needlefem

@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "case/specs/prbm_check_spec.hpp"
 #include "geometry/needle_tip.hpp"
 #include "prbm_check/tip_mesh.hpp"
 #include "prbm_check/tip_statics.hpp"
@@ -40,19 +41,20 @@ PrbmCheckResult run_prbm_check(const Case& input) {
   const NeedleTip needle = needle_tip_from_spec(parse_needle_tip_spec(input));
   if (needle.kind != NeedleTip::Kind::Compliant)
     throw input.error("needle.kind", "prbm-check needs the compliant (hinged) needle: set \"compliant\"");
-  std::vector<double> angles = input.reals("prbm_check.angles_deg");
+  const PrbmCheckSpec spec = parse_prbm_check_spec(input);
+  std::vector<double> angles = spec.angles_deg;
   if (angles.empty()) throw input.error("prbm_check.angles_deg", "needs at least one angle");
   std::sort(angles.begin(), angles.end());
   const CompliantTip& tip = needle.compliant;
 
   PrbmCheckResult result;
-  result.youngs_modulus_pa = input.real("steering.neck_youngs_modulus_gpa") * 1e9;
-  result.poisson_ratio = input.real("prbm_check.poisson_ratio");
+  result.youngs_modulus_pa = spec.neck_youngs_modulus_gpa * 1e9;
+  result.poisson_ratio = spec.poisson_ratio;
   if (!(result.poisson_ratio < 0.5))
     throw input.error("prbm_check.poisson_ratio", "must be below 0.5 (the co-rotational law's lambda is infinite there)");
-  result.tolerance_percent = input.real("prbm_check.tolerance_percent");
-  result.element_mm = input.real("prbm_check.element_mm");
-  result.neck_element_mm = input.real("prbm_check.neck_element_mm");
+  result.tolerance_percent = spec.tolerance_percent;
+  result.element_mm = spec.element_mm;
+  result.neck_element_mm = spec.neck_element_mm;
   // In air (mu_t = 0) and with the pull normal to the head (phi = 0), as the FEM is loaded.
   const steering::CompliantNeedleHinge hinge{tip.neck_length, tip.neck_diameter, tip.head_length,
                                              result.youngs_modulus_pa, 0.0};

@@ -49,6 +49,7 @@ struct PrbmCheckResult {
 // "; at every angle").
 std::string accuracy_text(const PrbmCheckResult& result, bool dead_load);
 
+// The check of the case's needle tip and PRBM check specs (case/specs/prbm_check_spec.hpp).
 // Throws CaseError for a bevel needle or unusable prbm_check keys; PETSc must be initialised.
 PrbmCheckResult run_prbm_check(const Case& input);
 

@@ -227,7 +227,7 @@ nlohmann::json summary_json(const Case& c, const RunSpecs& specs, const material
                  {"tets", scene->mesh.tet_count()},
                  {"element", scene->mesh.nodes_per_tet == 10 ? "TET10" : "TET4"},
                  {"msh_file", scene->msh_file.string()},
-                 {"refinement_level", c.integer("mesh.refinement_level")},
+                 {"refinement_level", specs.mesh.refinement_level},
                  {"needle_edge_element_mm", scene->info.grading.edge_elements.median},
                  {"cache", mesh_cache_json(scene->info)},
                  {"cavity_rounding", to_json(scene->cavity_rounding)}};
@@ -262,7 +262,7 @@ void print_progress(std::FILE* stream, double t, double end, const IdaCounters& 
 
 SceneModel load_run_scene(const Case& c, const RunSpecs& specs, const std::filesystem::path& out_dir,
                           std::FILE* progress, std::shared_ptr<const contact::Needle>* needle) {
-  SceneModel scene = load_scene_model(c, specs.mesh, out_dir, progress);
+  SceneModel scene = load_scene_model(c, specs.mesh, specs.obstacle, out_dir, progress);
   if (!needle_in_contact(specs)) return scene;
   contact::RoundedCavity rounded = contact::round_cavity_to_needle(run_needle_specs(c, specs), scene.mesh);
   scene.cavity_rounding = rounded.rounding;

@@ -1,5 +1,6 @@
-// The steering problem of a case: needle.* geometry and the [steering] keys (case/schema.cpp)
-// turned into SI model, schedule, run and scene, with the cross-key rules of a magnet schedule.
+// The steering problem of a case: its needle tip and steering specs (case/specs/needle_tip_spec.hpp,
+// steering_spec.hpp) turned into SI model, schedule, run and scene, with the cross-key rules of a
+// magnet schedule.
 #pragma once
 
 #include "case/case.hpp"

@@ -1,6 +1,8 @@
 // Case files: typed keys, ranges, defaults, overrides and the echoed resolved case.
 #include <gtest/gtest.h>
 
+#include <array>
+#include <optional>
 #include <regex>
 #include <string>
 #include <utility>
@@ -11,8 +13,12 @@
 #include "case/case.hpp"
 #include "case/schema.hpp"
 #include "case/specs/contact_spec.hpp"
+#include "case/specs/insertion_force_spec.hpp"
+#include "case/specs/mesh_spec.hpp"
 #include "case/specs/output_spec.hpp"
+#include "case/specs/prbm_check_spec.hpp"
 #include "case/specs/pressure_spec.hpp"
+#include "case/specs/steering_spec.hpp"
 #include "case/specs/thresholds_spec.hpp"
 
 using needlefem::Case;
@@ -297,4 +303,114 @@ TEST(NeedleContactSpec, EachDeflectionCheckKeyReachesItsOwnFieldWithTheSchemasDe
   EXPECT_TRUE(given.deflection_check.enabled);
   EXPECT_EQ(given.deflection_check.youngs_modulus_gpa, 2.0);
   EXPECT_EQ(given.deflection_check.poisson_ratio, 0.3);
+}
+
+// As for ThresholdsSpec, over the [steering] keys: the schedule's tables are absent unless given.
+TEST(SteeringSpec, EachKeyReachesItsOwnFieldWithTheSchemasDefault) {
+  using needlefem::SteeringSpec;
+  const std::pair<std::string, double SteeringSpec::*> fields[] = {
+      {"neck_youngs_modulus_gpa", &SteeringSpec::neck_youngs_modulus_gpa},
+      {"tissue_spring_constant_n_per_m2", &SteeringSpec::tissue_spring_constant_n_per_m2},
+      {"force_angle_deg", &SteeringSpec::force_angle_deg},
+      {"max_turning_angle_deg", &SteeringSpec::max_turning_angle_deg},
+      {"magnet_residual_flux_density_t", &SteeringSpec::magnet_residual_flux_density_t},
+      {"magnet_pole_width_mm", &SteeringSpec::magnet_pole_width_mm},
+      {"magnet_pole_length_mm", &SteeringSpec::magnet_pole_length_mm},
+      {"magnet_thickness_mm", &SteeringSpec::magnet_thickness_mm},
+      {"magnet_correction_factor", &SteeringSpec::magnet_correction_factor},
+      {"insertion_depth_mm", &SteeringSpec::insertion_depth_mm},
+      {"insertion_speed_mm_per_s", &SteeringSpec::insertion_speed_mm_per_s},
+      {"depth_step_mm", &SteeringSpec::depth_step_mm},
+      {"obstacle_radius_mm", &SteeringSpec::obstacle_radius_mm},
+      {"target_tolerance_mm", &SteeringSpec::target_tolerance_mm}};
+  const std::pair<std::string, std::optional<std::vector<double>> SteeringSpec::*> tables[] = {
+      {"schedule_depth_mm", &SteeringSpec::schedule_depth_mm},
+      {"schedule_time_s", &SteeringSpec::schedule_time_s},
+      {"magnet_distance_mm", &SteeringSpec::magnet_distance_mm},
+      {"pull_azimuth_deg", &SteeringSpec::pull_azimuth_deg}};
+  const Case defaults = Case::parse("", "a.toml");
+  const SteeringSpec by_default = needlefem::parse_steering_spec(defaults);
+  std::vector<std::string> overrides{"steering.block_size_mm=[2, 3, 4]", "steering.target_mm=[5, 6, 7]"};
+  for (std::size_t i = 0; i < std::size(fields); ++i) {
+    const auto& [name, field] = fields[i];
+    EXPECT_EQ(by_default.*field, defaults.real("steering." + name)) << name;
+    overrides.push_back("steering." + name + "=" + std::to_string((i + 1) / 100.0));  // inside every key's range
+  }
+  for (std::size_t i = 0; i < std::size(tables); ++i) {
+    const auto& [name, table] = tables[i];
+    EXPECT_FALSE(by_default.*table) << name;
+    overrides.push_back("steering." + name + "=[" + std::to_string(10 + i) + "]");
+  }
+  const std::vector<double> block = defaults.reals("steering.block_size_mm"), target = defaults.reals("steering.target_mm");
+  EXPECT_EQ(by_default.block_size_mm, (std::array{block[0], block[1], block[2]}));
+  EXPECT_EQ(by_default.target_mm, (std::array{target[0], target[1], target[2]}));
+  const SteeringSpec given = needlefem::parse_steering_spec(Case::parse("", "a.toml", overrides));
+  for (std::size_t i = 0; i < std::size(fields); ++i)
+    EXPECT_EQ(given.*fields[i].second, (i + 1) / 100.0) << fields[i].first;
+  for (std::size_t i = 0; i < std::size(tables); ++i)
+    EXPECT_EQ(given.*tables[i].second, std::vector<double>{10.0 + i}) << tables[i].first;
+  EXPECT_EQ(given.block_size_mm, (std::array{2.0, 3.0, 4.0}));
+  EXPECT_EQ(given.target_mm, (std::array{5.0, 6.0, 7.0}));
+}
+
+TEST(PrbmCheckSpec, EachKeyReachesItsOwnFieldWithTheSchemasDefault) {
+  const Case defaults = Case::parse("", "a.toml");
+  const auto [by_default, given] = default_and_given_specs(
+      needlefem::parse_prbm_check_spec,
+      {"prbm_check.angles_deg=[3, 1]", "steering.neck_youngs_modulus_gpa=2", "prbm_check.poisson_ratio=0.25",
+       "prbm_check.tolerance_percent=4", "prbm_check.element_mm=5", "prbm_check.neck_element_mm=6"});
+  EXPECT_EQ(by_default.angles_deg, defaults.reals("prbm_check.angles_deg"));
+  EXPECT_EQ(by_default.neck_youngs_modulus_gpa, defaults.real("steering.neck_youngs_modulus_gpa"));
+  EXPECT_EQ(by_default.poisson_ratio, defaults.real("prbm_check.poisson_ratio"));
+  EXPECT_EQ(by_default.tolerance_percent, defaults.real("prbm_check.tolerance_percent"));
+  EXPECT_EQ(by_default.element_mm, defaults.real("prbm_check.element_mm"));
+  EXPECT_EQ(by_default.neck_element_mm, defaults.real("prbm_check.neck_element_mm"));
+  EXPECT_EQ(given.angles_deg, (std::vector<double>{3.0, 1.0}));  // as given: the check sorts them
+  EXPECT_EQ(given.neck_youngs_modulus_gpa, 2.0);
+  EXPECT_EQ(given.poisson_ratio, 0.25);
+  EXPECT_EQ(given.tolerance_percent, 4.0);
+  EXPECT_EQ(given.element_mm, 5.0);
+  EXPECT_EQ(given.neck_element_mm, 6.0);
+}
+
+TEST(InsertionForceSpec, EachKeyReachesItsOwnFieldWithTheSchemasDefault) {
+  const Case defaults = Case::parse("", "a.toml");
+  const auto [by_default, given] = default_and_given_specs(
+      needlefem::parse_insertion_force_spec,
+      {"insertion_force.energy_history=\"h.csv\"", "insertion_force.energy_case=\"e.toml\"",
+       "insertion_force.extrapolation_warn_factor=3", "insertion_force.extrapolation_limit_factor=4",
+       "insertion_force.fracture_toughness_j_per_m2=5", "insertion_force.rupture_force_n=6",
+       "insertion_force.shaft_friction_n_per_mm=7", "insertion_force.travel_mm=8",
+       "insertion_force.sample_interval_s=9", "motion.insertion_speed_mm_per_s=10"});
+  EXPECT_TRUE(by_default.energy_history.empty());
+  EXPECT_TRUE(by_default.energy_case.empty());
+  EXPECT_EQ(by_default.extrapolation_warn_factor, defaults.real("insertion_force.extrapolation_warn_factor"));
+  EXPECT_EQ(by_default.extrapolation_limit_factor, defaults.real("insertion_force.extrapolation_limit_factor"));
+  EXPECT_EQ(by_default.fracture_toughness_j_per_m2, defaults.real("insertion_force.fracture_toughness_j_per_m2"));
+  EXPECT_FALSE(by_default.rupture_force_n);  // the schema gives it no default
+  EXPECT_EQ(by_default.shaft_friction_n_per_mm, defaults.real("insertion_force.shaft_friction_n_per_mm"));
+  EXPECT_EQ(by_default.travel_mm, defaults.real("insertion_force.travel_mm"));
+  EXPECT_EQ(by_default.sample_interval_s, defaults.real("insertion_force.sample_interval_s"));
+  EXPECT_EQ(by_default.insertion_speed_mm_per_s, defaults.real("motion.insertion_speed_mm_per_s"));
+  EXPECT_EQ(given.energy_history.filename(), "h.csv");
+  EXPECT_EQ(given.energy_case.filename(), "e.toml");
+  EXPECT_EQ(given.extrapolation_warn_factor, 3.0);
+  EXPECT_EQ(given.extrapolation_limit_factor, 4.0);
+  EXPECT_EQ(given.fracture_toughness_j_per_m2, 5.0);
+  EXPECT_EQ(given.rupture_force_n, 6.0);
+  EXPECT_EQ(given.shaft_friction_n_per_mm, 7.0);
+  EXPECT_EQ(given.travel_mm, 8.0);
+  EXPECT_EQ(given.sample_interval_s, 9.0);
+  EXPECT_EQ(given.insertion_speed_mm_per_s, 10.0);
+}
+
+// The mesh spec's keys that reach the mesh report and the summary beside the mesher.
+TEST(MeshSpec, PartitionsAndRefinementLevelReachTheirFieldsWithTheSchemasDefault) {
+  const Case defaults = Case::parse("", "a.toml");
+  const auto [by_default, given] =
+      default_and_given_specs(needlefem::parse_mesh_spec, {"mesh.partitions=3", "mesh.refinement_level=2"});
+  EXPECT_EQ(by_default.partitions, defaults.integer("mesh.partitions"));
+  EXPECT_EQ(by_default.refinement_level, defaults.integer("mesh.refinement_level"));
+  EXPECT_EQ(given.partitions, 3);
+  EXPECT_EQ(given.refinement_level, 2);
 }

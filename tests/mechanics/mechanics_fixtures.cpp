@@ -7,6 +7,7 @@
 
 #include <unistd.h>
 
+#include "case/specs/contact_spec.hpp"
 #include "case/specs/integration_spec.hpp"
 #include "case/specs/mesh_spec.hpp"
 #include "integration/options_from_spec.hpp"
@@ -25,7 +26,7 @@ std::filesystem::path fresh_folder() {
 
 SceneModel meshed(const Case& input) {
   const auto folder = fresh_folder();
-  SceneModel scene = load_scene_model(input, parse_mesh_spec(input), folder, nullptr);
+  SceneModel scene = load_scene_model(input, parse_mesh_spec(input), parse_obstacle_spec(input), folder, nullptr);
   std::filesystem::remove_all(folder);
   return scene;
 }

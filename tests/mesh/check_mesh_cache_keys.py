@@ -35,6 +35,7 @@ HANDLED_OTHERWISE = {
     "needle.cad_file": "keyed by the file's bytes",
     "needle.cad_facet_um": "the contact needle's triangulation (cad_tip.cpp), not the scene mesh",
     "needle.cad_facet_deg": "the contact needle's triangulation (cad_tip.cpp), not the scene mesh",
+    "mesh.partitions": "partitions the mesh once meshed (`needlefem mesh`), not the scene mesh",
 }
 READ = re.compile(r'(?:\bc\.(?:text|real|reals|integer|flag|texts|path|given|has|maybe_real)\(|\bparse_choice\(c, )'
                   r'"([a-z_0-9.]+)"')

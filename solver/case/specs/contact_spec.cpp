@@ -67,4 +67,6 @@ ObstacleSpec parse_obstacle_spec(const Case& c) {
   return spec;
 }
 
+const char* obstacle_kind_name(ObstacleKind kind) { return choice_name(kObstacleKinds, kind); }
+
 }  // namespace needlefem

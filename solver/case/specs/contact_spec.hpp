@@ -67,4 +67,7 @@ struct ObstacleSpec {
 // The case's [obstacle] table. Throws CaseError (obstacle.normal) for a plane's zero normal.
 ObstacleSpec parse_obstacle_spec(const Case& c);
 
+// The kind's obstacle.kind value, for messages.
+const char* obstacle_kind_name(ObstacleKind kind);
+
 }  // namespace needlefem

@@ -2,8 +2,8 @@
 // [mesh], the brain-tip scene's tip and tissue cube with their element sizes and the needle keys
 // its mesher reads, and the block's box: the input of the scene mesher and its cache
 // (mesh/scene_mesher.hpp, mesh/mesh_cache.hpp) and of load_scene_model (model/scene_model.hpp).
-// The mesh cache's key holds every key parsed here but the files it handles otherwise
-// (tests/mesh/check_mesh_cache_keys.py reads this parser's keys).
+// The mesh cache's key holds every key parsed here but the files and the partitions it handles
+// otherwise (tests/mesh/check_mesh_cache_keys.py reads this parser's keys).
 #pragma once
 
 #include <array>
@@ -26,6 +26,7 @@ struct MeshSpec {
   bool optimize_high_order;
   long seed;              // gmsh's random factor
   long refinement_level;  // L: every refined size times 2^-L
+  long partitions;        // METIS element partitions (MPI ranks), of the mesh once meshed
   // The brain-tip scene.
   NeedleTipSpec needle_tip;
   TissueCubeSpec tissue;                     // the cube, its core and their element sizes
