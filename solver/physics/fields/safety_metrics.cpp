@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -59,6 +60,10 @@ BallAverager::BallAverager(std::span<const Point3> positions, std::span<const do
       ++block.first[local + 1];
     }
     for (int l = 0; l < kBlockVoxels; ++l) block.first[l + 1] += block.first[l] - block.first[0];
+    std::uint64_t occupied = 0;
+    for (int l = 0; l < kBlockVoxels; ++l)
+      if (block.first[l + 1] > block.first[l]) occupied |= std::uint64_t{1} << l;
+    occupied_.push_back(occupied);
     int n = 0;
     for (long long i = -1; i <= 1; ++i)
       for (long long j = -1; j <= 1; ++j)
@@ -82,7 +87,7 @@ void BallAverager::plan_reach() {
   const auto split = [](int l) { return std::array<int, 3>{l / (kBlock * kBlock), (l / kBlock) % kBlock, l % kBlock}; };
   for (int centre = 0; centre < kBlockVoxels; ++centre) {
     const auto c = split(centre);
-    std::uint8_t neighbour = 0;
+    int neighbour = 0;
     for (int bi = -1; bi <= 1; ++bi)
       for (int bj = -1; bj <= 1; ++bj)
         for (int bk = -1; bk <= 1; ++bk, ++neighbour)
@@ -94,7 +99,12 @@ void BallAverager::plan_reach() {
               near += std::pow(std::max(0.0, std::abs(o) - 0.5), 2);
               far += std::pow(std::abs(o) + 0.5, 2);
             }
-            if (near <= r2) reach_[centre].push_back({neighbour, static_cast<std::uint8_t>(l), far <= r2});
+            Reach& reach = reach_[centre][neighbour];
+            const std::uint64_t bit = std::uint64_t{1} << l;
+            if (far <= r2)
+              reach.inside |= bit;
+            else if (near <= r2)
+              reach.rim |= bit;
           }
   }
 }
@@ -174,22 +184,26 @@ double BallAverager::average(const Sums& sums, int block, int voxel) const {
                               kBlock * centre_block.index[2] + voxel % kBlock});
   const double r2 = radius_ * radius_;
   double weighted = 0.0, volume = 0.0;
-  for (const Reach& r : reach_[voxel]) {
-    const int nb = centre_block.neighbours[r.neighbour];
+  for (int n = 0; n < 27; ++n) {
+    const int nb = centre_block.neighbours[n];
     if (nb < 0) continue;
-    const Block& other = blocks_[nb];
-    if (other.first[r.voxel] == other.first[r.voxel + 1]) continue;
-    if (r.inside) {
-      weighted += sums.weighted[std::size_t(nb) * kBlockVoxels + r.voxel];
-      volume += sums.volume[std::size_t(nb) * kBlockVoxels + r.voxel];
-      continue;
-    }
-    for (int p = other.first[r.voxel]; p < other.first[r.voxel + 1]; ++p) {
-      const Point3& x = positions_[p];
-      const double dx = x[0] - c[0], dy = x[1] - c[1], dz = x[2] - c[2];
-      if (dx * dx + dy * dy + dz * dz > r2) continue;
-      weighted += volumes_[p] * sums.field[p];
-      volume += volumes_[p];
+    const Reach& reach = reach_[voxel][n];
+    // The reached voxels that hold points, in ascending order, whole or point by point.
+    for (std::uint64_t bits = (reach.inside | reach.rim) & occupied_[nb]; bits != 0; bits &= bits - 1) {
+      const int l = std::countr_zero(bits);
+      if (reach.inside >> l & 1) {
+        weighted += sums.weighted[std::size_t(nb) * kBlockVoxels + l];
+        volume += sums.volume[std::size_t(nb) * kBlockVoxels + l];
+        continue;
+      }
+      const Block& other = blocks_[nb];
+      for (int p = other.first[l]; p < other.first[l + 1]; ++p) {
+        const Point3& x = positions_[p];
+        const double dx = x[0] - c[0], dy = x[1] - c[1], dz = x[2] - c[2];
+        if (dx * dx + dy * dy + dz * dz > r2) continue;
+        weighted += volumes_[p] * sums.field[p];
+        volume += volumes_[p];
+      }
     }
   }
   return volume > 0.0 ? weighted / volume : 0.0;

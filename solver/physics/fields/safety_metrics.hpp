@@ -83,12 +83,10 @@ class BallAverager {
     std::vector<double> weighted, volume, largest;  // per block and voxel
     std::vector<double> field;                      // per point in block order
   };
-  // A voxel that a ball centred in voxel `centre` of a block reaches: voxel `voxel` of the
-  // neighbour block `neighbour` (an index into Block::neighbours), wholly inside the ball or cut
-  // by its rim. Per centre voxel, in the order of the neighbours, then of the voxels.
+  // The voxels of one neighbour block that a ball centred in a given voxel reaches (bit l: voxel
+  // l), wholly inside the ball or cut by its rim.
   struct Reach {
-    std::uint8_t neighbour, voxel;
-    bool inside;
+    std::uint64_t inside = 0, rim = 0;
   };
   void mark_centres_in_tissue(std::span<const Tetrahedron> tissue, const std::unordered_map<long long, int>& block_at);
   std::array<long long, 3> voxel_of(const Point3& x) const;
@@ -104,7 +102,9 @@ class BallAverager {
   std::vector<Point3> positions_;
   std::vector<double> volumes_;
   std::vector<Block> blocks_;
-  std::array<std::vector<Reach>, kBlockVoxels> reach_;  // per centre voxel
+  std::vector<std::uint64_t> occupied_;  // per block, bit l: voxel l holds points
+  // Per centre voxel, per neighbour (Block::neighbours' order).
+  std::array<std::array<Reach, 27>, kBlockVoxels> reach_;
 };
 
 // Σ w_q over the points with f_q > limit (and mask true, when a mask is given), with the
