@@ -1,14 +1,14 @@
-// What `needlefem run` adds for the mesh scene (scene.kind = "mesh"): the pressure s(t) p on
-// groups.pressure (physics/mechanics/surface_pressure.hpp) and the contact of the case's rigid
-// obstacle with obstacle.group (physics/contact/scene_obstacle.hpp), both registered as surface
-// loads of the mechanics system, and at every output time the history.csv columns
-//   pressure_pa                                  the pressure applied (with groups.pressure),
+// What `needlefem run` reports of the mesh scene's loads (scene.kind = "mesh"; run/run_model.hpp
+// builds them and adds them to the mechanics system): at every output time the history.csv columns
+//   pressure_pa                                  the pressure applied (with groups.pressure,
+//                                                physics/mechanics/surface_pressure.hpp),
 //   obstacle_force_{x,y,z}_n, obstacle_moment_{x,y,z}_n_m, obstacle_contact_area_mm2
 //                                                force the tissue exerts on the obstacle, its
 //                                                moment about the scene's origin (a needle's axis
 //                                                passes through it: z is the torque about the
 //                                                axis), and the reference area of obstacle.group
-//                                                in contact (with an obstacle).
+//                                                in contact (with an obstacle,
+//                                                physics/contact/scene_obstacle.hpp).
 #pragma once
 
 #include <memory>
@@ -16,39 +16,30 @@
 
 #include <petscvec.h>
 
-#include "physics/contact/penalty_contact.hpp"
-#include "physics/mechanics/load_history.hpp"
-#include "run/run_specs.hpp"
-
-namespace needlefem {
-class Case;
+namespace needlefem::contact {
+class PenaltyContact;
 }
 namespace needlefem::mechanics {
 class MechanicsSystem;
+class SurfacePressure;
 }
 
 namespace needlefem::run {
 
 class MeshSceneLoads {
  public:
-  // nullptr unless scene.kind = "mesh"; otherwise adds the loads to `system` (`mesh` and `system`
-  // must outlive the result), the obstacle's contact by the [contact] law `contact_parameters`
-  // (run_contact_parameters). Takes the Case for the needle obstacle's motion (run_needle_specs).
-  static std::unique_ptr<MeshSceneLoads> attach(const Case& input, const RunSpecs& specs, const TetMesh& mesh,
-                                                mechanics::MechanicsSystem& system,
-                                                const contact::ContactParameters& contact_parameters);
-  MeshSceneLoads(const Case& input, const RunSpecs& specs, const TetMesh& mesh, mechanics::MechanicsSystem& system,
-                 const contact::ContactParameters& contact_parameters);
+  // The loads of the run model's `system` (which must outlive every history_cells()): `pressure`
+  // and `obstacle`, either null when the case has none.
+  MeshSceneLoads(const mechanics::MechanicsSystem& system, std::shared_ptr<const mechanics::SurfacePressure> pressure,
+                 std::shared_ptr<const contact::PenaltyContact> obstacle);
 
   std::string history_header() const;                          // starts with a comma
   std::string history_cells(double t, Vec y, Vec ydot) const;  // starts with a comma
 
  private:
   const mechanics::MechanicsSystem& system_;
-  mechanics::LoadHistory history_;
-  double pressure_pa_ = 0.0;
-  bool pressure_ = false;
-  std::shared_ptr<contact::PenaltyContact> contact_;
+  std::shared_ptr<const mechanics::SurfacePressure> pressure_;
+  std::shared_ptr<const contact::PenaltyContact> obstacle_;
 };
 
 }  // namespace needlefem::run

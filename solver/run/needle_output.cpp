@@ -31,30 +31,18 @@ double largest_magnitude(const std::vector<double>& values) {
 
 }  // namespace
 
-std::unique_ptr<NeedleOutput> NeedleOutput::attach(const NeedleContactSpec& spec, const TetMesh& mesh,
-                                                   mechanics::MechanicsSystem& system,
-                                                   const contact::ContactParameters& contact_parameters,
-                                                   std::shared_ptr<const contact::Needle> needle) {
-  if (!needle) return nullptr;
-  return std::make_unique<NeedleOutput>(spec, mesh, system, contact_parameters, std::move(needle));
-}
-
-NeedleOutput::NeedleOutput(const NeedleContactSpec& spec, const TetMesh& mesh, mechanics::MechanicsSystem& system,
-                           const contact::ContactParameters& contact_parameters,
-                           std::shared_ptr<const contact::Needle> needle)
-    : system_(system),
-      contact_(contact_parameters, mesh, std::move(needle)),
-      initial_gap_(contact_.initial_gap()) {
-  system.add_surface_load(contact_.surface_load());
+NeedleOutput::NeedleOutput(const NeedleContactSpec& spec, const TetMesh& mesh, const mechanics::MechanicsSystem& system,
+                           std::shared_ptr<const contact::NeedleContact> contact)
+    : system_(system), contact_(std::move(contact)), initial_gap_(contact_->initial_gap()) {
   const NeedleDeflectionCheckSpec& check = spec.deflection_check;
   if (!check.enabled) return;
-  if (contact_.hinged_needle())
+  if (contact_->hinged_needle())
     throw case_error(spec.origin, "needle.deflection_check",
                      "the compliant tip's neck is the hinge spring of its head (run/hinge_coupling.hpp); the check is "
                      "for rigid tips");
   youngs_modulus_pa_ = check.youngs_modulus_gpa * kPaPerGpa;
   poisson_ratio_ = check.poisson_ratio;
-  const NeedleMotion& motion = contact_.needle().motion();
+  const NeedleMotion& motion = contact_->needle().motion();
   needle_travel_m_ = std::abs(motion.insertion_speed) * motion.elapsed(motion.duration);
   const auto start = std::chrono::steady_clock::now();
   try {
@@ -77,24 +65,25 @@ std::vector<output::FieldSpec> NeedleOutput::field_specs() {
 std::string NeedleOutput::history_header() const {
   return std::string(",needle_force_x_n,needle_force_y_n,needle_force_z_n,needle_moment_x_n_m,needle_moment_y_n_m,"
                      "needle_moment_z_n_m,contact_area_mm2,needle_lateral_force_xi_n,needle_lateral_force_eta_n") +
-         (contact_.hinged_needle() ? ",head_angle_deg,head_tilt_x_rad,head_tilt_y_rad,head_moment_x_n_m,head_moment_y_n_m"
-                                   : "");
+         (contact_->hinged_needle()
+              ? ",head_angle_deg,head_tilt_x_rad,head_tilt_y_rad,head_moment_x_n_m,head_moment_y_n_m"
+              : "");
 }
 
 void NeedleOutput::evaluate(double t, Vec y, Vec ydot) {
   const ReadArray state(y), rate(ydot);
-  load_ = contact_.load_on_needle(t, state.data(), rate.data(), system_.dof_map());
-  fields_ = contact_.surface_fields(t, state.data(), system_.dof_map());
+  load_ = contact_->load_on_needle(t, state.data(), rate.data(), system_.dof_map());
+  fields_ = contact_->surface_fields(t, state.data(), system_.dof_map());
   times_.push_back(t);
   axial_force_.push_back(load_.axial_force());
   torque_.push_back(load_.torque());
   // The lateral force in the needle's own frame, turned with it by ω τ(t) about z.
-  const NeedleMotion& motion = contact_.needle().motion();
+  const NeedleMotion& motion = contact_->needle().motion();
   const double angle = motion.rotation_speed * motion.elapsed(t), c = std::cos(angle), s = std::sin(angle);
   lateral_force_ = {c * load_.force[0] + s * load_.force[1], -s * load_.force[0] + c * load_.force[1]};
   lateral_force_magnitude_.push_back(std::hypot(lateral_force_[0], lateral_force_[1]));
-  if (const contact::HingedNeedle* hinged = contact_.hinged_needle()) {
-    head_load_ = contact_.load_on_head(t, state.data(), rate.data(), system_.dof_map());
+  if (const contact::HingedNeedle* hinged = contact_->hinged_needle()) {
+    head_load_ = contact_->load_on_head(t, state.data(), rate.data(), system_.dof_map());
     head_tilt_ = hinged->tilt().at(t);
     head_moments_.push_back({head_load_.moment[0], head_load_.moment[1]});
     head_tilts_.push_back(head_tilt_);
@@ -102,7 +91,7 @@ void NeedleOutput::evaluate(double t, Vec y, Vec ydot) {
   if (!elasticity_) return;
   const auto start = std::chrono::steady_clock::now();
   const auto deflection =
-      elasticity_->deflection(contact_.nodal_loads_in_needle_frame(t, state.data(), rate.data(), system_.dof_map()));
+      elasticity_->deflection(contact_->nodal_loads_in_needle_frame(t, state.data(), rate.data(), system_.dof_map()));
   elasticity_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (deflection.max_m >= largest_deflection_.max_m) {
     largest_deflection_ = deflection;
@@ -114,7 +103,7 @@ std::string NeedleOutput::history_cells() const {
   const Point3 &f = load_.force, &m = load_.moment;
   std::string cells = fmt::format(",{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}", f[0], f[1], f[2],
                                   m[0], m[1], m[2], load_.contact_area * kMm2PerM2, lateral_force_[0], lateral_force_[1]);
-  if (contact_.hinged_needle())
+  if (contact_->hinged_needle())
     cells += fmt::format(",{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}", std::hypot(head_tilt_[0], head_tilt_[1]) * kDegPerRad,
                          head_tilt_[0], head_tilt_[1], head_load_.moment[0], head_load_.moment[1]);
   return cells;
@@ -134,7 +123,7 @@ nlohmann::json NeedleOutput::summary() const {
                           "lateral force: its part across the axis, what steers a bevel tip (history.csv gives it in the "
                           "needle's frame, xi towards the bevel face's lateral normal, turning with the needle); "
                           "max_* are the largest magnitudes over the output times"}};
-  if (contact_.hinged_needle())
+  if (contact_->hinged_needle())
     s["head"] = {{"time_s", times_},
                  {"tilt_rad", head_tilts_},
                  {"moment_n_m", head_moments_},
@@ -146,12 +135,12 @@ nlohmann::json NeedleOutput::summary() const {
                   {"initial_gap_centroids_mm", range(initial_gap_.centroids)},
                   {"initial_gap_note", "[min, max] gap of the undeformed cavity to the needle at t = 0, at the cavity "
                                        "nodes and at the face centroids"},
-                  {"edge_radius_mm", contact_.needle().edge_radius() * kMmPerM},
+                  {"edge_radius_mm", contact_->needle().edge_radius() * kMmPerM},
                   {"edge_note", "the needle's bevel and fillet edges are rounded with this radius (needle_obstacle.hpp): "
                                 "cavity nodes on those edges start up to about this far from the needle"},
-                  {"cavity_faces", contact_.contact().face_count()}};
+                  {"cavity_faces", contact_->contact().face_count()}};
   if (deflection_check_) {
-    const double elastic_slip = contact_.contact().elastic_slip();
+    const double elastic_slip = contact_->contact().elastic_slip();
     const Point3& where = largest_deflection_.where;
     s["needle"]["deflection_check"] = {
         {"max_deflection_m", largest_deflection_.max_m},

@@ -1,6 +1,6 @@
-// What `needlefem run` adds for the needle of the brain-tip scene in frictional contact
-// (contact.mode = "frictional", physics/contact/needle_contact.hpp): it registers the contact as
-// a surface load of the mechanics system and, at every output time, reports
+// What `needlefem run` reports of the needle of the brain-tip scene in frictional contact
+// (contact.mode = "frictional", physics/contact/needle_contact.hpp; run/run_model.hpp builds the
+// contact and adds it to the mechanics system), at every output time:
 //   history.csv  needle_force_{x,y,z}_n, needle_moment_{x,y,z}_n_m (on the needle, moment about
 //                the centre of its rear face; z = axial force and torque about the axis),
 //                contact_area_mm2 (reference area of the cavity in contact),
@@ -46,16 +46,11 @@ namespace needlefem::run {
 
 class NeedleOutput {
  public:
-  // nullptr without a needle (needle contact off for this case); otherwise builds the contact with
-  // `needle` by the [contact] law `contact_parameters` (run_contact_parameters) and adds it to
-  // `system` (both `mesh` and `system` must outlive the result), with `spec`'s deflection check.
-  static std::unique_ptr<NeedleOutput> attach(const NeedleContactSpec& spec, const TetMesh& mesh,
-                                              mechanics::MechanicsSystem& system,
-                                              const contact::ContactParameters& contact_parameters,
-                                              std::shared_ptr<const contact::Needle> needle);
-
-  NeedleOutput(const NeedleContactSpec& spec, const TetMesh& mesh, mechanics::MechanicsSystem& system,
-               const contact::ContactParameters& contact_parameters, std::shared_ptr<const contact::Needle> needle);
+  // The needle's `contact`, a load of the run model's `system` (which must outlive every
+  // evaluate()), with `spec`'s deflection check on the needle region of `mesh`. Throws CaseError
+  // (needle.deflection_check) for the compliant tip and for a needle region the check cannot use.
+  NeedleOutput(const NeedleContactSpec& spec, const TetMesh& mesh, const mechanics::MechanicsSystem& system,
+               std::shared_ptr<const contact::NeedleContact> contact);
 
   static std::vector<output::FieldSpec> field_specs();
   std::string history_header() const;  // starts with a comma
@@ -75,7 +70,7 @@ class NeedleOutput {
 
  private:
   const mechanics::MechanicsSystem& system_;
-  contact::NeedleContact contact_;
+  std::shared_ptr<const contact::NeedleContact> contact_;
   contact::NeedleContact::InitialGap initial_gap_;
   contact::NeedleLoad load_;
   contact::NeedleContact::SurfaceFields fields_;

@@ -38,6 +38,7 @@
 #include "run/mesh_scene_loads.hpp"
 #include "run/needle_output.hpp"
 #include "run/output_schedule.hpp"
+#include "run/run_model.hpp"
 #include "run/safety_report.hpp"
 #include "run/software_versions.hpp"
 
@@ -320,14 +321,11 @@ class RunPass {
 
     const PetscSession petsc(options_.petsc_options);
     material_ = std::make_unique<material::Material>(material::material_from_spec(specs_.mechanics.material));
-    const auto system = mechanics::MechanicsSystem::from_spec(specs_.mechanics, mesh,
-                                                              newton_matrix_options_from_spec(specs_.integration));
-    if (needle && options_.head_tilt)
-      needle = contact::needle_from_spec(run_needle_specs(c_, specs_), nullptr, options_.head_tilt);
-    const contact::ContactParameters contact_parameters =
-        run_contact_parameters(specs_, material_->instantaneous_shear_modulus());
-    needle_ = NeedleOutput::attach(specs_.needle_contact, mesh, *system, contact_parameters, std::move(needle));
-    scene_loads_ = MeshSceneLoads::attach(c_, specs_, mesh, *system, contact_parameters);
+    const RunModel model = build_run_model(c_, specs_, mesh, *material_, std::move(needle), options_.head_tilt);
+    mechanics::MechanicsSystem& system = *model.system;
+    if (model.needle) needle_ = std::make_unique<NeedleOutput>(specs_.needle_contact, mesh, system, model.needle);
+    if (model.pressure || model.obstacle)
+      scene_loads_ = std::make_unique<MeshSceneLoads>(system, model.pressure, model.obstacle);
     // The needle's PETSc solvers go before the session does, also when the run fails.
     const struct ReleaseNeedleSolvers {
       NeedleOutput* needle;
@@ -335,10 +333,10 @@ class RunPass {
         if (needle) needle->release_solvers();
       }
     } release_needle_solvers{needle_.get()};
-    record_.dofs = system->local_size();
-    record_.displacement_dofs = system->displacement_dofs();
-    record_.surfaces = reaction_surfaces(mesh, system->dof_map());
-    const fields::TissueFieldEvaluator evaluator(*system, mesh, specs_.output.density_kg_per_m3);
+    record_.dofs = system.local_size();
+    record_.displacement_dofs = system.displacement_dofs();
+    record_.surfaces = reaction_surfaces(mesh, system.dof_map());
+    const fields::TissueFieldEvaluator evaluator(system, mesh, specs_.output.density_kg_per_m3);
     safety_ = std::make_unique<SafetyReport>(specs_.thresholds, mesh, evaluator);
 
     std::vector<output::FieldSpec> specs = field_specs();
@@ -351,8 +349,8 @@ class RunPass {
     for (auto& cells : max_over_time) cells.assign(mesh.tet_count(), 0.0);
     PassOutputs outputs{evaluator, file, history, max_over_time};
 
-    IdaIntegrator integrator(*system, ida_options_from_spec(specs_.integration), times_.front(), PETSC_COMM_SELF);
-    prepare_integrator(integrator, *system);
+    IdaIntegrator integrator(system, ida_options_from_spec(specs_.integration), times_.front(), PETSC_COMM_SELF);
+    prepare_integrator(integrator, system);
     last_report_ = Clock::now();
     double integration_s = 0.0;
     const double inversion_s = (specs_.mechanics.boundary.scene_kind == SceneKind::block
@@ -369,15 +367,15 @@ class RunPass {
       try {
         if (t > integrator.time())
           integrator.advance_to(t, [&](double t_step) {
-            report_step(integrator, *system, t_step);
+            report_step(integrator, system, t_step);
             if (t_step < t) safety_->observe_step(t_step, integrator.state());
           });
       } catch (const std::exception&) {
-        record_solver_counts(integrator, *system);  // the failed run's summary shows the failed attempts
+        record_solver_counts(integrator, system);  // the failed run's summary shows the failed attempts
         throw;
       }
       integration_s += seconds_since(step_start);
-      write_output_time(t, integrator, *system, outputs);
+      write_output_time(t, integrator, system, outputs);
       record_.integration_s = integration_s;
       // By the first output every solver has been set up and has solved (the initial-rates
       // probe, the needle's fields): an option after -- that none of them read is a mistake.

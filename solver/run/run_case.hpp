@@ -1,11 +1,11 @@
 // `needlefem run`: one case from start to finish.
-//   mesh (model/scene_model) -> MechanicsSystem (physics/mechanics) -> IdaIntegrator advancing
-//   to every output time (run/output_schedule) -> at each time the tissue fields
-//   (physics/fields) appended to DIR/result.h5 + .xdmf, a row of DIR/history.csv (per-time
-//   maxima with positions, reaction force per named boundary surface, elastic and kinetic
-//   energy; the needle's loads, run/needle_output.hpp; the mesh scene's pressure and obstacle
-//   loads, run/mesh_scene_loads.hpp) and a progress line on `progress`; finally
-//   DIR/summary.json (written atomically).
+//   mesh (model/scene_model) -> MechanicsSystem with the case's loads (physics/mechanics, built
+//   by run/run_model) -> IdaIntegrator advancing to every output time (run/output_schedule) ->
+//   at each time the tissue fields (physics/fields) appended to DIR/result.h5 + .xdmf, a row of
+//   DIR/history.csv (per-time maxima with positions, reaction force per named boundary surface,
+//   elastic and kinetic energy; the needle's loads, run/needle_output.hpp; the mesh scene's
+//   pressure and obstacle loads, run/mesh_scene_loads.hpp) and a progress line on `progress`;
+//   finally DIR/summary.json (written atomically).
 // DIR/summary.json says "status": "running" (with the case) from the start until it is replaced
 // at the end, so a run killed outright never leaves a summary of another run or one that claims
 // "completed"; its result.h5 then lists every completed output time (result.xdmf may lag one).

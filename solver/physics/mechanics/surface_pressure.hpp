@@ -33,6 +33,8 @@ class SurfacePressure final : public SurfaceLoad {
                     NewtonMatrix form) const override;
   bool depends_on_rates() const override { return false; }
 
+  double pressure(double t) const { return pressure_(t); }  // Pa, the one applied at time t
+
  private:
   // x (3m) of face f: reference positions, plus the displacements of y for a follower load.
   void face_positions(std::size_t face, const double* y, const DofMap& dofs, double* x) const;
