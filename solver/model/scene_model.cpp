@@ -1,43 +1,53 @@
 #include "model/scene_model.hpp"
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include "case/case.hpp"
+#include "case/case_error.hpp"
+#include "case/specs/boundary_spec.hpp"
 #include "case/specs/contact_spec.hpp"
 #include "case/specs/mesh_spec.hpp"
+#include "case/specs/pressure_spec.hpp"
 #include "model/read_msh.hpp"
 
 namespace needlefem {
 
 namespace {
 
-// The keys of the mesh scene that name surface groups of the mesh.
-const std::vector<std::string> kGroupListKeys{"groups.fixed", "groups.roller", "groups.displaced", "groups.pressure"};
-
 // Every group a mesh-scene key names must be a surface group (dimension 2) of the mesh.
-void require_scene_groups(const Case& c, const ObstacleSpec& obstacle, const std::filesystem::path& mesh_file,
-                          const TetMesh& mesh) {
+void require_scene_groups(const MeshSpec& spec, const MeshSceneGroupsSpec& groups, const PressureSpec& pressure,
+                          const ObstacleSpec& obstacle, const TetMesh& mesh) {
+  const std::filesystem::path& mesh_file = spec.scene_mesh_file;
   const auto require_surface = [&](const std::string& key, const std::string& group) {
     if (mesh.surface_faces.count(group)) return;
     if (mesh.region_index(group) >= 0)
-      throw c.error(key, fmt::format("'{}' is a volume group (dimension 3) of {}; a condition needs a surface group "
-                                     "(dimension 2)", group, mesh_file.string()));
+      throw case_error(spec.origin, key,
+                       fmt::format("'{}' is a volume group (dimension 3) of {}; a condition needs a surface group "
+                                   "(dimension 2)", group, mesh_file.string()));
     std::vector<std::string> surfaces;
     for (const auto& [name, faces] : mesh.surface_faces) surfaces.push_back(name);
-    throw c.error(key, fmt::format("{} has no surface group (dimension 2) named '{}'; its surface groups are: {}",
-                                   mesh_file.string(), group,
-                                   surfaces.empty() ? std::string("none") : fmt::format("{}", fmt::join(surfaces, ", "))));
+    throw case_error(spec.origin, key,
+                     fmt::format("{} has no surface group (dimension 2) named '{}'; its surface groups are: {}",
+                                 mesh_file.string(), group,
+                                 surfaces.empty() ? std::string("none") : fmt::format("{}", fmt::join(surfaces, ", "))));
   };
-  for (const auto& key : kGroupListKeys)
-    for (const auto& group : c.texts(key)) require_surface(key, group);
+  // The keys that name lists of surface groups, in the order their errors are reported.
+  const std::pair<const char*, const std::vector<std::string>*> group_lists[] = {
+      {"groups.fixed", &groups.fixed},
+      {"groups.roller", &groups.roller},
+      {"groups.displaced", &groups.displaced},
+      {"groups.pressure", &pressure.groups}};
+  for (const auto& [key, names] : group_lists)
+    for (const auto& group : *names) require_surface(key, group);
   if (obstacle.kind == ObstacleKind::none) return;
   if (obstacle.group.empty())
-    throw c.error("obstacle.group", fmt::format("obstacle.kind = \"{}\" needs the surface group it touches",
-                                                obstacle_kind_name(obstacle.kind)));
+    throw case_error(spec.origin, "obstacle.group",
+                     fmt::format("obstacle.kind = \"{}\" needs the surface group it touches",
+                                 obstacle_kind_name(obstacle.kind)));
   require_surface("obstacle.group", obstacle.group);
 }
 
@@ -51,8 +61,8 @@ void require_mesh_scene_keys_unused(const MeshSpec& spec) {
 
 }  // namespace
 
-SceneModel load_scene_model(const Case& c, const MeshSpec& spec, const ObstacleSpec& obstacle,
-                            const std::filesystem::path& out_dir, std::FILE* progress) {
+SceneModel load_scene_model(const MeshSpec& spec, const MeshSceneGroupsSpec& groups, const PressureSpec& pressure,
+                            const ObstacleSpec& obstacle, const std::filesystem::path& out_dir, std::FILE* progress) {
   SceneModel scene;
   const std::filesystem::path& user_file = spec.scene_mesh_file;
   const bool mesh_scene = spec.scene_kind == SceneKind::mesh;
@@ -78,7 +88,7 @@ SceneModel load_scene_model(const Case& c, const MeshSpec& spec, const ObstacleS
   if (const long order = scene.mesh.nodes_per_tet == 10 ? 2 : 1; scene.user_mesh && order != spec.order)
     throw file_error(fmt::format("'{}' has {}-node (order {}) tetrahedra but mesh.order = {}", scene.msh_file.string(),
                                  scene.mesh.nodes_per_tet, order, spec.order));
-  if (mesh_scene) require_scene_groups(c, obstacle, spec.scene_mesh_file, scene.mesh);
+  if (mesh_scene) require_scene_groups(spec, groups, pressure, obstacle, scene.mesh);
   scene.quality = measure_quality(scene.mesh);
   return scene;
 }

@@ -12,9 +12,10 @@
 
 namespace needlefem {
 
-class Case;
+struct MeshSceneGroupsSpec;
 struct MeshSpec;
 struct ObstacleSpec;
+struct PressureSpec;
 
 struct SceneModel {
   TetMesh mesh;
@@ -26,15 +27,16 @@ struct SceneModel {
 };
 
 // Meshes the scene of the case's mesh spec `spec` (parse_mesh_spec) into out_dir/mesh.msh (or
-// reads scene.mesh_file; a .geo of the mesh scene is meshed there too), saying so on `progress` (build_scene_mesh; nullptr: silent). Throws CaseError
-// for bad input (also: a group the mesh scene's keys name that is not a surface group of the
-// mesh, and mesh-scene keys given in another scene) and std::runtime_error for meshing failures;
-// inverted elements are reported in `quality`, and require_valid_elements() turns them into an
-// error.
-// The mesh scene's group keys ([groups]) are read from `c`, its obstacle's group from `obstacle`
-// (parse_obstacle_spec).
-SceneModel load_scene_model(const Case& c, const MeshSpec& spec, const ObstacleSpec& obstacle,
-                            const std::filesystem::path& out_dir, std::FILE* progress);
+// reads scene.mesh_file; a .geo of the mesh scene is meshed there too), saying so on `progress`
+// (build_scene_mesh; nullptr: silent). Throws CaseError for bad input (also: a group the mesh
+// scene's keys name that is not a surface group of the mesh, and mesh-scene keys given in another
+// scene) and std::runtime_error for meshing failures; inverted elements are reported in
+// `quality`, and require_valid_elements() turns them into an error.
+// The groups the mesh scene's keys name: groups.fixed, .roller and .displaced in `groups`
+// (parse_boundary_spec), groups.pressure in `pressure` (parse_pressure_spec), obstacle.group in
+// `obstacle` (parse_obstacle_spec).
+SceneModel load_scene_model(const MeshSpec& spec, const MeshSceneGroupsSpec& groups, const PressureSpec& pressure,
+                            const ObstacleSpec& obstacle, const std::filesystem::path& out_dir, std::FILE* progress);
 void require_valid_elements(const SceneModel& scene);
 
 }  // namespace needlefem

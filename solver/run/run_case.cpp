@@ -263,7 +263,8 @@ void print_progress(std::FILE* stream, double t, double end, const IdaCounters& 
 
 SceneModel load_run_scene(const Case& c, const RunSpecs& specs, const std::filesystem::path& out_dir,
                           std::FILE* progress, std::shared_ptr<const contact::Needle>* needle) {
-  SceneModel scene = load_scene_model(c, specs.mesh, specs.obstacle, out_dir, progress);
+  SceneModel scene =
+      load_scene_model(specs.mesh, specs.mechanics.boundary.groups, specs.pressure, specs.obstacle, out_dir, progress);
   if (!needle_in_contact(specs)) return scene;
   contact::RoundedCavity rounded = contact::round_cavity_to_needle(run_needle_specs(c, specs), scene.mesh);
   scene.cavity_rounding = rounded.rounding;

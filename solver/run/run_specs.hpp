@@ -1,7 +1,7 @@
 // The case parsed once into the specs of the stages a run goes through (run_case.cpp; `needlefem
 // mesh` shows its scene, load_run_scene): each stage gets its own spec rather than the case and
-// its keys. Keys no spec covers yet (steering, the mesh scene's group checks) are still read from
-// the Case where they are used.
+// its keys. Two specs are still parsed from the Case where they are used: the compliant tip's
+// steering (run/hinge_coupling.hpp) and the needle's motion (run_needle_specs).
 #pragma once
 
 #include "case/specs/contact_spec.hpp"

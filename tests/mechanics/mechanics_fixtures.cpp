@@ -7,9 +7,11 @@
 
 #include <unistd.h>
 
+#include "case/specs/boundary_spec.hpp"
 #include "case/specs/contact_spec.hpp"
 #include "case/specs/integration_spec.hpp"
 #include "case/specs/mesh_spec.hpp"
+#include "case/specs/pressure_spec.hpp"
 #include "integration/options_from_spec.hpp"
 
 namespace needlefem::mechanics::testing {
@@ -26,7 +28,8 @@ std::filesystem::path fresh_folder() {
 
 SceneModel meshed(const Case& input) {
   const auto folder = fresh_folder();
-  SceneModel scene = load_scene_model(input, parse_mesh_spec(input), parse_obstacle_spec(input), folder, nullptr);
+  SceneModel scene = load_scene_model(parse_mesh_spec(input), parse_boundary_spec(input).groups,
+                                      parse_pressure_spec(input), parse_obstacle_spec(input), folder, nullptr);
   std::filesystem::remove_all(folder);
   return scene;
 }
