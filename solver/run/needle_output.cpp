@@ -31,13 +31,12 @@ double largest_magnitude(const std::vector<double>& values) {
 
 }  // namespace
 
-NeedleOutput::NeedleOutput(const NeedleContactSpec& spec, const TetMesh& mesh, const mechanics::MechanicsSystem& system,
-                           std::shared_ptr<const contact::NeedleContact> contact)
+NeedleOutput::NeedleOutput(const NeedleDeflectionCheckSpec& check, const TetMesh& mesh,
+                           const mechanics::MechanicsSystem& system, std::shared_ptr<const contact::NeedleContact> contact)
     : system_(system), contact_(std::move(contact)), initial_gap_(contact_->initial_gap()) {
-  const NeedleDeflectionCheckSpec& check = spec.deflection_check;
   if (!check.enabled) return;
   if (contact_->hinged_needle())
-    throw case_error(spec.origin, "needle.deflection_check",
+    throw case_error(check.origin, "needle.deflection_check",
                      "the compliant tip's neck is the hinge spring of its head (run/hinge_coupling.hpp); the check is "
                      "for rigid tips");
   youngs_modulus_pa_ = check.youngs_modulus_gpa * kPaPerGpa;
@@ -48,7 +47,7 @@ NeedleOutput::NeedleOutput(const NeedleContactSpec& spec, const TetMesh& mesh, c
   try {
     elasticity_ = std::make_unique<contact::NeedleElasticity>(mesh, youngs_modulus_pa_, poisson_ratio_);
   } catch (const std::runtime_error& e) {
-    throw case_error(spec.origin, "needle.deflection_check", e.what());
+    throw case_error(check.origin, "needle.deflection_check", e.what());
   }
   elasticity_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   deflection_check_ = true;

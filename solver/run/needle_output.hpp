@@ -36,7 +36,7 @@
 #include "physics/contact/needle_elasticity.hpp"
 
 namespace needlefem {
-struct NeedleContactSpec;
+struct NeedleDeflectionCheckSpec;
 }
 namespace needlefem::mechanics {
 class MechanicsSystem;
@@ -47,9 +47,9 @@ namespace needlefem::run {
 class NeedleOutput {
  public:
   // The needle's `contact`, a load of the run model's `system` (which must outlive every
-  // evaluate()), with `spec`'s deflection check on the needle region of `mesh`. Throws CaseError
+  // evaluate()), with the deflection `check` on the needle region of `mesh`. Throws CaseError
   // (needle.deflection_check) for the compliant tip and for a needle region the check cannot use.
-  NeedleOutput(const NeedleContactSpec& spec, const TetMesh& mesh, const mechanics::MechanicsSystem& system,
+  NeedleOutput(const NeedleDeflectionCheckSpec& check, const TetMesh& mesh, const mechanics::MechanicsSystem& system,
                std::shared_ptr<const contact::NeedleContact> contact);
 
   static std::vector<output::FieldSpec> field_specs();

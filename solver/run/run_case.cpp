@@ -324,7 +324,8 @@ class RunPass {
     material_ = std::make_unique<material::Material>(material::material_from_spec(specs_.mechanics.material));
     const RunModel model = build_run_model(c_, specs_, mesh, *material_, std::move(needle), options_.head_tilt);
     mechanics::MechanicsSystem& system = *model.system;
-    if (model.needle) needle_ = std::make_unique<NeedleOutput>(specs_.needle_contact, mesh, system, model.needle);
+    if (model.needle)
+      needle_ = std::make_unique<NeedleOutput>(specs_.needle_deflection_check, mesh, system, model.needle);
     if (model.pressure || model.obstacle)
       scene_loads_ = std::make_unique<MeshSceneLoads>(system, model.pressure, model.obstacle);
     // The needle's PETSc solvers go before the session does, also when the run fails.

@@ -1,17 +1,21 @@
 #include "run/run_specs.hpp"
 
+#include <utility>
+
 #include "physics/contact/needle_contact.hpp"
 #include "physics/contact/penalty_contact.hpp"
 #include "physics/mechanics/load_history.hpp"
 
 namespace needlefem::run {
 
+// The mesh spec, which throws no CaseError, is parsed first: the mechanics spec takes a key from it.
 RunSpecs parse_run_specs(const Case& c) {
+  MeshSpec mesh = parse_mesh_spec(c);
   return {.scene_kind = parse_scene_kind(c),
-          .mechanics = parse_mechanics_spec(c),
+          .mechanics = parse_mechanics_spec(c, mesh),
           .contact = parse_contact_spec(c),
-          .mesh = parse_mesh_spec(c),
-          .needle_contact = parse_needle_contact_spec(c),
+          .mesh = std::move(mesh),
+          .needle_deflection_check = parse_needle_deflection_check_spec(c),
           .obstacle = parse_obstacle_spec(c),
           .loading = parse_loading_spec(c),
           .pressure = parse_pressure_spec(c),
@@ -25,15 +29,12 @@ bool needle_in_contact(const RunSpecs& specs) {
 }
 
 contact::ContactParameters run_contact_parameters(const RunSpecs& specs, double reference_modulus) {
-  return contact::contact_parameters_from_spec(specs.contact, reference_modulus,
-                                               mechanics::history_end(specs.loading));
+  return contact::contact_parameters_from_spec(specs.contact, reference_modulus, mechanics::history_end(specs.loading),
+                                               specs.mesh.refinement_level);
 }
 
 contact::NeedleSpecs run_needle_specs(const Case& c, const RunSpecs& specs) {
-  return {.tip = specs.mesh.needle_tip,
-          .tissue = specs.mesh.tissue,
-          .contact = specs.needle_contact,
-          .motion = parse_motion_spec(c)};
+  return {.mesh = specs.mesh, .motion = parse_motion_spec(c)};
 }
 
 }  // namespace needlefem::run

@@ -24,12 +24,16 @@ struct NeedleSpecs;
 
 namespace needlefem::run {
 
+// The mesh spec alone parses scene.mesh_file, mesh.refinement_level and needle.edge_radius_um:
+// the mechanics (the file its errors name), the contact (its face sizes) and the needle in
+// contact take them from it. (scene.kind, contact.mode and [loading] are still parsed again by
+// the specs that need them.)
 struct RunSpecs {
   SceneKind scene_kind;
   MechanicsSpec mechanics;
   ContactSpec contact;
   MeshSpec mesh;  // with the needle tip and the tissue cube a CAD tip's rules check it against
-  NeedleContactSpec needle_contact;
+  NeedleDeflectionCheckSpec needle_deflection_check;
   ObstacleSpec obstacle;
   LoadingSpec loading;
   PressureSpec pressure;
@@ -48,12 +52,13 @@ bool needle_in_contact(const RunSpecs& specs);
 
 // The [contact] law in SI units for each contact of the run (the needle's, a mesh scene's
 // obstacle): the penalty scaled by `reference_modulus` μ₀, the tissue's instantaneous shear
-// modulus, the multiplier updates spread over the scene's loading history (mechanics::history_end).
+// modulus, the multiplier updates spread over the scene's loading history (mechanics::history_end),
+// the face sizes by the mesh's refinement level.
 contact::ContactParameters run_contact_parameters(const RunSpecs& specs, double reference_modulus);
 
-// What the run's needle (in contact, or a mesh scene's needle obstacle) is built from: the specs'
-// tip and contact keys with the needle's motion, parsed from `c` (parse_motion_spec, which refuses
-// a ramp longer than the motion) where a needle is built.
+// What the run's needle (in contact, or a mesh scene's needle obstacle) is built from: the mesh
+// spec with the needle's motion, parsed from `c` (parse_motion_spec, which refuses a ramp longer
+// than the motion) where a needle is built.
 contact::NeedleSpecs run_needle_specs(const Case& c, const RunSpecs& specs);
 
 }  // namespace needlefem::run

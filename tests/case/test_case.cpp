@@ -291,18 +291,19 @@ TEST(PressureSpec, EachKeyReachesItsOwnFieldWithTheSchemasDefault) {
   EXPECT_FALSE(given.follower);
 }
 
-TEST(NeedleContactSpec, EachDeflectionCheckKeyReachesItsOwnFieldWithTheSchemasDefault) {
+TEST(NeedleDeflectionCheckSpec, EachKeyReachesItsOwnFieldWithTheSchemasDefault) {
   const Case defaults = Case::parse("", "a.toml");
   ASSERT_FALSE(defaults.flag("needle.deflection_check"));  // so that the case below gives another value
   const auto [by_default, given] = default_and_given_specs(
-      needlefem::parse_needle_contact_spec,
+      needlefem::parse_needle_deflection_check_spec,
       {"needle.deflection_check=true", "needle.youngs_modulus_gpa=2", "needle.poisson_ratio=0.3"});
-  EXPECT_EQ(by_default.deflection_check.enabled, defaults.flag("needle.deflection_check"));
-  EXPECT_EQ(by_default.deflection_check.youngs_modulus_gpa, defaults.real("needle.youngs_modulus_gpa"));
-  EXPECT_EQ(by_default.deflection_check.poisson_ratio, defaults.real("needle.poisson_ratio"));
-  EXPECT_TRUE(given.deflection_check.enabled);
-  EXPECT_EQ(given.deflection_check.youngs_modulus_gpa, 2.0);
-  EXPECT_EQ(given.deflection_check.poisson_ratio, 0.3);
+  EXPECT_EQ(by_default.origin, "a.toml");
+  EXPECT_EQ(by_default.enabled, defaults.flag("needle.deflection_check"));
+  EXPECT_EQ(by_default.youngs_modulus_gpa, defaults.real("needle.youngs_modulus_gpa"));
+  EXPECT_EQ(by_default.poisson_ratio, defaults.real("needle.poisson_ratio"));
+  EXPECT_TRUE(given.enabled);
+  EXPECT_EQ(given.youngs_modulus_gpa, 2.0);
+  EXPECT_EQ(given.poisson_ratio, 0.3);
 }
 
 // As for ThresholdsSpec, over the [steering] keys: the schedule's tables are absent unless given.

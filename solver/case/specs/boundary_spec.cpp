@@ -6,6 +6,7 @@
 #include "case/case.hpp"
 #include "case/specs/choice.hpp"
 #include "case/specs/contact_spec.hpp"
+#include "case/specs/mesh_spec.hpp"
 
 namespace needlefem {
 
@@ -39,7 +40,7 @@ const std::array<std::string, 6>& block_face_names() {
   return names;
 }
 
-BoundarySpec parse_boundary_spec(const Case& c) {
+BoundarySpec parse_boundary_spec(const Case& c, const MeshSpec& mesh) {
   BoundarySpec spec{.scene_kind = parse_scene_kind(c),
                     .block = parse_block_spec(c),
                     .groups = {.origin = c.origin(),
@@ -47,7 +48,7 @@ BoundarySpec parse_boundary_spec(const Case& c) {
                                .roller = c.texts("groups.roller"),
                                .displaced = c.texts("groups.displaced"),
                                .displacement_gradient = matrix(c, "displacement.gradient"),
-                               .mesh_file = c.path("scene.mesh_file")},
+                               .mesh_file = mesh.scene_mesh_file},
                     .loading = parse_loading_spec(c),
                     .tied_cavity_motion = std::nullopt};
   if (spec.scene_kind == SceneKind::brain_tip && parse_contact_spec(c).mode == ContactMode::tied)

@@ -16,6 +16,7 @@
 namespace needlefem {
 
 class Case;
+struct MeshSpec;
 
 // The block's faces, two per axis (face f is normal to axis f / 2): the names of their keys
 // (block.x_min, ...) and of their surface groups.
@@ -33,7 +34,7 @@ struct MeshSceneGroupsSpec {
   std::string origin;  // the case's, for the CaseError of a roller group that is not a plane
   std::vector<std::string> fixed, roller, displaced;
   std::array<double, 9> displacement_gradient;  // displacement.gradient, row-major
-  std::filesystem::path mesh_file;              // scene.mesh_file, resolved, named in errors
+  std::filesystem::path mesh_file;              // the mesh spec's scene.mesh_file, named in errors
 };
 
 struct BoundarySpec {
@@ -46,6 +47,7 @@ struct BoundarySpec {
   std::optional<MotionSpec> tied_cavity_motion;
 };
 
-BoundarySpec parse_boundary_spec(const Case& c);
+// The mesh scene's file from `mesh` (parse_mesh_spec), which parses scene.mesh_file.
+BoundarySpec parse_boundary_spec(const Case& c, const MeshSpec& mesh);
 
 }  // namespace needlefem

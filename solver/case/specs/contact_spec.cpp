@@ -40,17 +40,14 @@ ContactSpec parse_contact_spec(const Case& c) {
       .friction_tangent = parse_choice(c, "contact.friction_tangent", kFrictionTangents),
       .friction_law = parse_choice(c, "contact.friction_law", kFrictionLaws),
       .normal_enforcement = parse_choice(c, "contact.normal_enforcement", kNormalEnforcements),
-      .mesh_refinement_level = c.integer("mesh.refinement_level"),
   };
 }
 
-NeedleContactSpec parse_needle_contact_spec(const Case& c) {
+NeedleDeflectionCheckSpec parse_needle_deflection_check_spec(const Case& c) {
   return {.origin = c.origin(),
-          .edge_radius_um = c.real("needle.edge_radius_um"),
-          .scene_mesh_file = c.path("scene.mesh_file"),
-          .deflection_check = {.enabled = c.flag("needle.deflection_check"),
-                               .youngs_modulus_gpa = c.real("needle.youngs_modulus_gpa"),
-                               .poisson_ratio = c.real("needle.poisson_ratio")}};
+          .enabled = c.flag("needle.deflection_check"),
+          .youngs_modulus_gpa = c.real("needle.youngs_modulus_gpa"),
+          .poisson_ratio = c.real("needle.poisson_ratio")};
 }
 
 ObstacleSpec parse_obstacle_spec(const Case& c) {

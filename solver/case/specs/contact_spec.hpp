@@ -1,12 +1,12 @@
-// The contact stage's keys, parsed: the [contact] law (physics/contact/penalty_contact.hpp), what
-// the needle in contact reads beyond its tip's shape (needle_contact.hpp; the shape:
-// geometry/needle_tip.hpp) with the check of its deflection under the contact loads
-// (run/needle_output.hpp), and a mesh scene's obstacle ([obstacle], scene_obstacle.hpp).
-// Values are in the units their keys name; the physics converts them to SI.
+// The contact stage's keys, parsed: the [contact] law (physics/contact/penalty_contact.hpp), the
+// check of the needle's deflection under the contact loads (run/needle_output.hpp), and a mesh
+// scene's obstacle ([obstacle], scene_obstacle.hpp). The needle in contact is built from the mesh
+// spec's keys (its tip, needle.edge_radius_um, scene.mesh_file: case/specs/mesh_spec.hpp), the
+// contact's face sizes follow its mesh.refinement_level. Values are in the units their keys name;
+// the physics converts them to SI.
 #pragma once
 
 #include <array>
-#include <filesystem>
 #include <string>
 
 namespace needlefem {
@@ -29,9 +29,6 @@ struct ContactSpec {
   FrictionTangent friction_tangent;
   FrictionLaw friction_law;
   NormalEnforcement normal_enforcement;
-  // mesh.refinement_level: the contact scales its face sizes by 2^level to keep the level-0 mesh's
-  // enforcement.
-  long mesh_refinement_level;
 };
 
 ContactSpec parse_contact_spec(const Case& c);
@@ -39,19 +36,13 @@ ContactSpec parse_contact_spec(const Case& c);
 // needle.deflection_check: the linear-elastic tip under the contact loads
 // (physics/contact/needle_elasticity.hpp), with the needle's elastic constants.
 struct NeedleDeflectionCheckSpec {
+  std::string origin;         // the case's, for the CaseErrors of a tip or mesh the check cannot take
   bool enabled;               // needle.deflection_check
   double youngs_modulus_gpa;  // needle.youngs_modulus_gpa
   double poisson_ratio;       // needle.poisson_ratio
 };
 
-struct NeedleContactSpec {
-  std::string origin;                     // the case's, for the CaseErrors of rules checked against the mesh
-  double edge_radius_um;                  // needle.edge_radius_um
-  std::filesystem::path scene_mesh_file;  // scene.mesh_file, resolved; empty: the generated mesh
-  NeedleDeflectionCheckSpec deflection_check;
-};
-
-NeedleContactSpec parse_needle_contact_spec(const Case& c);
+NeedleDeflectionCheckSpec parse_needle_deflection_check_spec(const Case& c);
 
 enum class ObstacleKind { none, plane, sphere, needle };
 

@@ -7,12 +7,12 @@
 
 namespace needlefem {
 
-MechanicsSpec parse_mechanics_spec(const Case& c) {
+MechanicsSpec parse_mechanics_spec(const Case& c, const MeshSpec& mesh) {
   return {.material = parse_material_spec(c),
           .formulation = parse_choice(c, "element.formulation",
                                       std::array{std::pair{"mixed", ElementFormulation::mean_dilatation},
                                                  std::pair{"displacement", ElementFormulation::displacement}}),
-          .boundary = parse_boundary_spec(c)};
+          .boundary = parse_boundary_spec(c, mesh)};
 }
 
 }  // namespace needlefem

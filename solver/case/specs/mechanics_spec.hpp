@@ -18,7 +18,8 @@ struct MechanicsSpec {
   BoundarySpec boundary;
 };
 
-// Throws the CaseErrors of parse_material_spec and parse_boundary_spec.
-MechanicsSpec parse_mechanics_spec(const Case& c);
+// Throws the CaseErrors of parse_material_spec and parse_boundary_spec (which takes a key of
+// `mesh`, parse_mesh_spec's).
+MechanicsSpec parse_mechanics_spec(const Case& c, const MeshSpec& mesh);
 
 }  // namespace needlefem

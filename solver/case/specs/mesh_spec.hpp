@@ -2,6 +2,8 @@
 // [mesh], the brain-tip scene's tip and tissue cube with their element sizes and the needle keys
 // its mesher reads, and the block's box: the input of the scene mesher and its cache
 // (mesh/scene_mesher.hpp, mesh/mesh_cache.hpp) and of load_scene_model (model/scene_model.hpp).
+// Its scene.mesh_file, mesh.refinement_level and needle.edge_radius_um are parsed here only: the
+// mechanics, the contact and the needle in contact take them from this spec (run/run_specs.hpp).
 // The mesh cache's key holds every key parsed here but the files and the partitions it handles
 // otherwise (tests/mesh/check_mesh_cache_keys.py reads this parser's keys).
 #pragma once

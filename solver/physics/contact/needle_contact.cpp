@@ -35,7 +35,7 @@ double centroid_weight(int nodes_per_face, int a) {
 // nodes may sit on chords), so they are checked against the sharp needle (the rounding of the
 // contact needle's edges is not meshed) at t = 0; a vertex off it by more than a thousandth of
 // the radius stops the run, naming the largest offset and where.
-void require_cavity_on_needle(const NeedleContactSpec& spec, const TetMesh& mesh, const RigidObstacle& sharp) {
+void require_cavity_on_needle(const MeshSpec& spec, const TetMesh& mesh, const RigidObstacle& sharp) {
   constexpr double kMmPerM = 1e3;
   const auto cavity = mesh.surface_faces.find(kCavity);
   if (cavity == mesh.surface_faces.end()) return;  // NeedleContact names the missing group
@@ -77,14 +77,15 @@ std::shared_ptr<const CadNeedleShape> cad_needle_shape(const NeedleTipSpec& spec
 std::shared_ptr<const Needle> needle_from_spec(const NeedleSpecs& specs, std::shared_ptr<const Needle>* sharp,
                                                std::shared_ptr<const HeadTilt> tilt) {
   constexpr double kSharpEdge = 1e-12;  // m: the needle without its edge rounding
-  const NeedleTip tip = needle_tip_from_spec(specs.tip);
-  const double edge_radius = specs.contact.edge_radius_um * kMPerUm;
+  const NeedleTipSpec& tip_spec = specs.mesh.needle_tip;
+  const NeedleTip tip = needle_tip_from_spec(tip_spec);
+  const double edge_radius = specs.mesh.needle_edge_radius_um * kMPerUm;
   const NeedleMotion motion = needle_motion_from_spec(specs.motion);
   switch (tip.kind) {
     case NeedleTip::Kind::Cad: {
-      const CadTipTriangulation cad = triangulate_cad_tip(specs.tip, specs.tissue);
-      if (sharp) *sharp = std::make_shared<RigidNeedle>(cad_needle_shape(specs.tip, cad, 0.0), motion);
-      return std::make_shared<RigidNeedle>(cad_needle_shape(specs.tip, cad, edge_radius), motion);
+      const CadTipTriangulation cad = triangulate_cad_tip(tip_spec, specs.mesh.tissue);
+      if (sharp) *sharp = std::make_shared<RigidNeedle>(cad_needle_shape(tip_spec, cad, 0.0), motion);
+      return std::make_shared<RigidNeedle>(cad_needle_shape(tip_spec, cad, edge_radius), motion);
     }
     case NeedleTip::Kind::Compliant:
       if (sharp) *sharp = std::make_shared<HingedNeedle>(tip.compliant, motion, kSharpEdge, tilt);
@@ -98,7 +99,7 @@ std::shared_ptr<const Needle> needle_from_spec(const NeedleSpecs& specs, std::sh
 
 RoundedCavity round_cavity_to_needle(const NeedleSpecs& specs, TetMesh& mesh) {
   constexpr double kRoundingMoveLimit = 4.0;  // edge radii
-  const NeedleContactSpec& spec = specs.contact;
+  const MeshSpec& spec = specs.mesh;
   const bool user_mesh = !spec.scene_mesh_file.empty();
   std::shared_ptr<const Needle> sharp;  // without the edge rounding, as the cavity was meshed
   RoundedCavity rounded{needle_from_spec(specs, user_mesh ? &sharp : nullptr), {}};
@@ -113,7 +114,7 @@ RoundedCavity round_cavity_to_needle(const NeedleSpecs& specs, TetMesh& mesh) {
   // the Quincke's lancet point left sharp 6.7 ρ.
   // The case's radius, not the needle's: a fully rounded tip has no edges to round (0) but its
   // nodes still move by round-off.
-  const double edge_radius = spec.edge_radius_um * kMPerUm;
+  const double edge_radius = spec.needle_edge_radius_um * kMPerUm;
   if (rounded.rounding.largest_move_m > kRoundingMoveLimit * edge_radius)
     throw case_error(spec.origin, "needle.edge_radius_um",
                      fmt::format("rounding the cavity to the needle's edges moved it by up to {:.3g} mm, more than "

@@ -32,9 +32,8 @@
 #include <memory>
 #include <vector>
 
-#include "case/specs/contact_spec.hpp"
+#include "case/specs/mesh_spec.hpp"
 #include "case/specs/motion_spec.hpp"
-#include "case/specs/needle_tip_spec.hpp"
 #include "model/cavity_rounding.hpp"
 #include "model/tet_mesh.hpp"
 #include "physics/contact/hinged_needle.hpp"
@@ -44,13 +43,12 @@
 
 namespace needlefem::contact {
 
-// What the case's needle is built from: its tip and the tissue cube a CAD tip's rules check it
-// against (parse_needle_tip_spec, parse_tissue_cube_spec), its edge rounding and, for a user's
-// mesh, the cavity's check (parse_needle_contact_spec), and its motion (parse_motion_spec).
+// What the case's needle is built from: the mesh spec (parse_mesh_spec: the needle in contact is
+// the one the scene was meshed around), with its tip, the tissue cube a CAD tip's rules check it
+// against, its edge rounding (needle.edge_radius_um) and, for a user's mesh, the cavity's check
+// (scene.mesh_file); and its motion (parse_motion_spec).
 struct NeedleSpecs {
-  NeedleTipSpec tip;
-  TissueCubeSpec tissue;
-  NeedleContactSpec contact;
+  MeshSpec mesh;
   MotionSpec motion;
 };
 
@@ -64,7 +62,7 @@ std::shared_ptr<const Needle> needle_from_spec(const NeedleSpecs& specs, std::sh
 
 // For the needle in contact (the brain-tip scene with contact.mode = "frictional"): moves the
 // mesh's cavity onto the rounded needle of the specs at t = 0 (model/cavity_rounding.hpp), a
-// user's mesh (specs.contact.scene_mesh_file) once its cavity has been checked against the sharp
+// user's mesh (specs.mesh.scene_mesh_file) once its cavity has been checked against the sharp
 // needle (CaseError naming the largest offset); a CaseError naming needle.edge_radius_um when the
 // rounding moves the cavity by more than four edge radii (a point sharper than the radius can
 // round). Returns what moved and the needle, to be the needle in contact too: a CAD tip's

@@ -175,7 +175,8 @@ NormalPressure normal_pressure(double depth, double penalty, double smoothing_de
   return {0.5 * penalty * depth * depth / smoothing_depth, penalty * depth / smoothing_depth};
 }
 
-ContactParameters contact_parameters_from_spec(const ContactSpec& spec, double reference_modulus, double history_end_s) {
+ContactParameters contact_parameters_from_spec(const ContactSpec& spec, double reference_modulus, double history_end_s,
+                                               long mesh_refinement_level) {
   ContactParameters p;
   p.friction_coefficient = spec.friction_coefficient;
   p.penalty_factor = spec.penalty_factor;
@@ -184,7 +185,7 @@ ContactParameters contact_parameters_from_spec(const ContactSpec& spec, double r
   p.rate_strengthening = spec.rate_strengthening_s_per_m;
   p.slip_velocity_regularisation = spec.slip_velocity_regularisation_mm_per_s * kMetresPerMm;
   p.reference_modulus = reference_modulus;
-  p.face_size_scale = std::ldexp(1.0, static_cast<int>(spec.mesh_refinement_level));
+  p.face_size_scale = std::ldexp(1.0, static_cast<int>(mesh_refinement_level));
   p.friction_tangent = spec.friction_tangent;
   p.friction_law = spec.friction_law;
   p.normal_enforcement = spec.normal_enforcement;

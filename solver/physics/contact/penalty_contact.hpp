@@ -206,8 +206,10 @@ NormalPressure normal_pressure(double depth, double penalty, double smoothing_de
 
 // The case's [contact] law (parse_contact_spec) in SI units; μ₀ from the caller (the material's
 // instantaneous shear modulus), the multiplier update interval from the length of the scene's
-// history (mechanics::history_end).
-ContactParameters contact_parameters_from_spec(const ContactSpec& spec, double reference_modulus, double history_end_s);
+// history (mechanics::history_end), and the mesh's mesh.refinement_level (MeshSpec's): the contact
+// scales its face sizes by 2^level to keep the level-0 mesh's enforcement.
+ContactParameters contact_parameters_from_spec(const ContactSpec& spec, double reference_modulus, double history_end_s,
+                                               long mesh_refinement_level);
 
 // Residual and Newton-matrix terms of one face: 3m values and 3m x 3m (row-major), m face nodes.
 struct FaceTerms {
