@@ -5,11 +5,11 @@
 #include <array>
 #include <chrono>
 #include <cmath>
-#include <set>
 #include <stdexcept>
 
 #include <fmt/core.h>
 #include <petscmat.h>
+#include <petscvec.h>
 
 #include "integration/ksp_solver.hpp"
 #include "integration/petsc_arrays.hpp"
@@ -17,6 +17,7 @@
 #include "model/tet_geometry.hpp"
 #include "physics/elements/tet_element.hpp"
 #include "physics/material/material.hpp"
+#include "physics/mechanics/tet_assembly.hpp"
 
 namespace needlefem::prbm {
 
@@ -38,41 +39,36 @@ constexpr double kCorrectionTolerance = 1e-10;
 struct CompliantTipStatics::Impl {
   TetMesh mesh;
   elements::TetElementKernel kernel;
-  std::vector<elements::ElementGeometry> geometry;
+  mechanics::TetAssembly assembly;  // geometry, matrix pattern, element loop and clamp (rear face)
   std::vector<double> load_weight;  // w_a per node, Σ w_a = 1
   std::vector<std::size_t> head_elements;
   double head_volume = 0.0;
-  std::vector<PetscInt> clamped_dofs;
   std::vector<double> u;  // current displacement, 3 per node
   double force_n = 0.0;   // load of the current state
   double tip_length_m = 0.0;
-  Mat matrix = nullptr;
   Vec rhs = nullptr, step = nullptr;
   KspSolver solver{PETSC_COMM_SELF};
 
-  Impl(TetMesh m, const material::Material& material)
-      : mesh(std::move(m)), kernel(material, elements::Formulation::displacement) {}
+  Impl(TetMesh m, const material::Material& material, std::vector<PetscInt> clamped_dofs)
+      : mesh(std::move(m)),
+        kernel(material, elements::Formulation::displacement),
+        assembly(mesh.nodes_per_tet, mesh.tet_nodes, mesh.nodes, std::move(clamped_dofs)),
+        rhs(assembly.create_vector()),
+        step(assembly.create_vector()) {}
   ~Impl() {
-    MatDestroy(&matrix);
     VecDestroy(&rhs);
     VecDestroy(&step);
   }
 
   std::size_t dofs() const { return 3 * mesh.nodes.size(); }
 
-  void element_values(std::size_t e, const std::vector<double>& displacement, double* out) const {
-    const int* nodes = mesh.tet(e);
-    for (int a = 0; a < kNodes; ++a)
-      for (int i = 0; i < 3; ++i) out[3 * a + i] = displacement[3 * nodes[a] + i];
-  }
-
   // Rotation of the head: polar factor of its volume-averaged deformation gradient (tip_statics.hpp).
   material::Mat3d head_rotation(const std::vector<double>& displacement) const {
     material::Mat3d mean_f{};
     std::vector<double> element_u(kElementDofs);
     for (std::size_t e : head_elements) {
-      element_values(e, displacement, element_u.data());
-      const auto& g = geometry[e];
+      assembly.gather(e, displacement.data(), element_u.data());
+      const auto& g = assembly.geometry(e);
       for (int q = 0; q < g.points; ++q) {
         const double* G = g.gradient_at(q);
         for (int i = 0; i < 3; ++i)
@@ -95,37 +91,10 @@ struct CompliantTipStatics::Impl {
     const material::Mat3d R = head_rotation(u);
     const std::array<double, 3> direction =
         kind == LoadKind::follower ? std::array<double, 3>{R(0, 0), R(1, 0), R(2, 0)} : std::array<double, 3>{1, 0, 0};
-    petsc_check(VecSet(rhs, 0.0), "VecSet");
-    if (with_tangent) petsc_check(MatZeroEntries(matrix), "MatZeroEntries");
-    std::vector<double> element_u(kElementDofs);
-    std::vector<PetscInt> rows(kElementDofs);
-    {
-      WriteArray residual(rhs);
-      for (std::size_t node = 0; node < mesh.nodes.size(); ++node)
-        for (int i = 0; i < 3; ++i) residual.data()[3 * node + i] = -force * load_weight[node] * direction[i];
-      for (std::size_t e = 0; e < mesh.tet_count(); ++e) {
-        element_values(e, u, element_u.data());
-        const elements::ElementResult result = kernel.evaluate(geometry[e], element_u.data(), nullptr, with_tangent);
-        if (result.inverted) return false;
-        const int* nodes = mesh.tet(e);
-        for (int a = 0; a < kNodes; ++a)
-          for (int i = 0; i < 3; ++i) rows[3 * a + i] = 3 * nodes[a] + i;
-        for (int c = 0; c < kElementDofs; ++c) residual.data()[rows[c]] += result.residual[c];
-        if (with_tangent)
-          petsc_check(MatSetValues(matrix, kElementDofs, rows.data(), kElementDofs, rows.data(),
-                                   result.stiffness.data(), ADD_VALUES),
-                      "MatSetValues");
-      }
-      for (PetscInt dof : clamped_dofs) residual.data()[dof] = 0.0;
-    }
-    if (with_tangent) {
-      petsc_check(MatAssemblyBegin(matrix, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
-      petsc_check(MatAssemblyEnd(matrix, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
-      petsc_check(MatZeroRowsColumns(matrix, static_cast<PetscInt>(clamped_dofs.size()), clamped_dofs.data(), 1.0,
-                                     nullptr, nullptr),
-                  "MatZeroRowsColumns");
-    }
-    return true;
+    WriteArray residual(rhs);
+    for (std::size_t node = 0; node < mesh.nodes.size(); ++node)
+      for (int i = 0; i < 3; ++i) residual.data()[3 * node + i] = -force * load_weight[node] * direction[i];
+    return assembly.add_elements(kernel, u, residual.data(), with_tangent);
   }
 
   // Norm of f_ext for the convergence test: F sqrt(Σ w_a²) (direction is a unit vector).
@@ -145,7 +114,7 @@ struct CompliantTipStatics::Impl {
       if (norm <= kResidualTolerance * load_norm(force)) return iteration;
       if (iteration == kMaxNewtonIterations) break;
       const auto start = std::chrono::steady_clock::now();
-      if (!solver.factor(matrix) || !solver.solve(rhs, step)) return -1;
+      if (!solver.factor(assembly.matrix()) || !solver.solve(rhs, step)) return -1;
       linear_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       ReadArray delta(step);
       double largest_correction = 0.0, largest_u = 0.0;
@@ -167,24 +136,27 @@ CompliantTipStatics::CompliantTipStatics(const CompliantTip& tip, TetMesh mesh, 
         fmt::format("compliant tip FEM: need E > 0 and -1 < nu < 0.5, got E = {} Pa, nu = {}", youngs_modulus_pa,
                     poisson_ratio));
   if (mesh.nodes_per_tet != kNodes) throw std::invalid_argument("compliant tip FEM: needs 10-node tetrahedra");
+  // Clamp: every node on the rear face z = 0.
+  std::vector<PetscInt> clamped_dofs;
+  for (std::size_t a = 0; a < mesh.nodes.size(); ++a)
+    if (std::abs(mesh.nodes[a][2]) <= 1e-9 * tip.length())
+      for (int i = 0; i < 3; ++i) clamped_dofs.push_back(static_cast<PetscInt>(3 * a + i));
+  if (clamped_dofs.empty()) throw std::runtime_error("compliant tip FEM: no node on the rear face z = 0");
   const material::Material steel("needle", material::CorotationalLinear{youngs_modulus_pa, poisson_ratio});
-  impl_ = std::make_unique<Impl>(std::move(mesh), steel);
+  impl_ = std::make_unique<Impl>(std::move(mesh), steel, std::move(clamped_dofs));
   Impl& m = *impl_;
   m.tip_length_m = tip.length();
   const int head = m.mesh.region_index("head");
   const std::size_t nodes = m.mesh.nodes.size();
 
-  // Element geometry, head-load weights w_a = ∫_head N_a dV / V_head and the load's resultant.
+  // Head-load weights w_a = ∫_head N_a dV / V_head and the load's resultant.
   m.load_weight.assign(nodes, 0.0);
-  std::vector<double> coordinates(kElementDofs), shape(kNodes);
+  std::vector<double> shape(kNodes);
   const auto& quadrature = elements::element_quadrature(kNodes);
   for (std::size_t e = 0; e < m.mesh.tet_count(); ++e) {
-    const int* element = m.mesh.tet(e);
-    for (int a = 0; a < kNodes; ++a)
-      for (int i = 0; i < 3; ++i) coordinates[3 * a + i] = m.mesh.nodes[element[a]][i];
-    m.geometry.push_back(elements::element_geometry(kNodes, coordinates.data()));
     if (m.mesh.tet_region[e] != head) continue;
-    const auto& g = m.geometry.back();
+    const int* element = m.mesh.tet(e);
+    const auto& g = m.assembly.geometry(e);
     for (int q = 0; q < g.points; ++q) {
       tet_shape_values(kNodes, quadrature[q].xi, shape.data());
       for (int a = 0; a < kNodes; ++a) m.load_weight[element[a]] += shape[a] * g.weight[q];
@@ -199,25 +171,6 @@ CompliantTipStatics::CompliantTipStatics(const CompliantTip& tip, TetMesh mesh, 
     load_z += m.load_weight[a] * m.mesh.nodes[a][2];
   }
   load_lever_m_ = load_z - (tip.shaft + 0.5 * tip.neck_length);
-
-  // Clamp: every node on the rear face z = 0.
-  for (std::size_t a = 0; a < nodes; ++a)
-    if (std::abs(m.mesh.nodes[a][2]) <= 1e-9 * tip.length())
-      for (int i = 0; i < 3; ++i) m.clamped_dofs.push_back(static_cast<PetscInt>(3 * a + i));
-  if (m.clamped_dofs.empty()) throw std::runtime_error("compliant tip FEM: no node on the rear face z = 0");
-
-  // Matrix pattern: dof rows couple to the 3 dofs of every node sharing an element.
-  std::vector<std::set<int>> neighbours(nodes);
-  for (std::size_t e = 0; e < m.mesh.tet_count(); ++e)
-    for (int a = 0; a < kNodes; ++a) neighbours[m.mesh.tet(e)[a]].insert(m.mesh.tet(e), m.mesh.tet(e) + kNodes);
-  std::vector<PetscInt> nonzeros(3 * nodes);
-  for (std::size_t a = 0; a < nodes; ++a)
-    for (int i = 0; i < 3; ++i) nonzeros[3 * a + i] = static_cast<PetscInt>(3 * neighbours[a].size());
-  const auto n = static_cast<PetscInt>(3 * nodes);
-  petsc_check(MatCreateSeqAIJ(PETSC_COMM_SELF, n, n, 0, nonzeros.data(), &m.matrix), "MatCreateSeqAIJ");
-  petsc_check(MatSetOption(m.matrix, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE), "MatSetOption");
-  petsc_check(VecCreateSeq(PETSC_COMM_SELF, n, &m.rhs), "VecCreateSeq");
-  petsc_check(VecDuplicate(m.rhs, &m.step), "VecDuplicate");
   m.u.assign(3 * nodes, 0.0);
 }
 
@@ -261,7 +214,7 @@ double CompliantTipStatics::linear_rotation_per_newton() {
   const std::vector<double> saved = m.u;
   std::fill(m.u.begin(), m.u.end(), 0.0);
   // At rest r_int = 0, so the assembled residual is -f_ext for 1 N: one solve gives u_lin per newton.
-  if (!m.assemble(1.0, LoadKind::dead, true) || !m.solver.factor(m.matrix) || !m.solver.solve(m.rhs, m.step))
+  if (!m.assemble(1.0, LoadKind::dead, true) || !m.solver.factor(m.assembly.matrix()) || !m.solver.solve(m.rhs, m.step))
     throw std::runtime_error("compliant tip FEM: the linear stiffness matrix could not be factored");
   std::vector<double> linear(m.u.size());
   {
@@ -284,8 +237,8 @@ double CompliantTipStatics::max_corotated_strain() const {
   std::vector<double> element_u(kElementDofs);
   double largest = 0.0;
   for (std::size_t e = 0; e < m.mesh.tet_count(); ++e) {
-    m.element_values(e, m.u, element_u.data());
-    const auto result = m.kernel.evaluate(m.geometry[e], element_u.data(), nullptr, false);
+    m.assembly.gather(e, m.u.data(), element_u.data());
+    const auto result = m.kernel.evaluate(m.assembly.geometry(e), element_u.data(), nullptr, false);
     for (const auto& point : result.points) {
       material::Mat3d F{};
       for (int k = 0; k < 9; ++k) F.a[k] = point.deformation_gradient[k];
