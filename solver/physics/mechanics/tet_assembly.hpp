@@ -43,12 +43,10 @@ class TetAssembly {
   TetAssembly(const TetAssembly&) = delete;
   TetAssembly& operator=(const TetAssembly&) = delete;
 
-  int nodes_per_tet() const { return nodes_per_tet_; }
   std::size_t elements() const { return geometry_.size(); }
   std::size_t dofs() const { return dofs_; }
   const int* nodes(std::size_t e) const { return element_nodes_.data() + e * nodes_per_tet_; }
   const elements::ElementGeometry& geometry(std::size_t e) const { return geometry_[e]; }
-  const std::vector<PetscInt>& clamped_dofs() const { return clamped_dofs_; }
   Mat matrix() const { return matrix_; }
 
   // A new sequential vector of dofs() entries; the caller destroys it.
@@ -59,18 +57,19 @@ class TetAssembly {
 
   // With displacement u (dofs() values): adds Σ_e r_e(u) into `residual` (dofs() values, e.g. the
   // caller's -f_ext) unless it is null, then zeroes its clamped entries; unless `with_stiffness` is
-  // false, sets the matrix to Σ_e K_e(u) (zeroed first), assembles it and clamps it
-  // (clamp_matrix). Returns false at the first inverted element: the residual is then partly
+  // false, sets the matrix to Σ_e K_e(u) (zeroed first), assembles it and clamps it (identity
+  // rows and columns). Returns false at the first inverted element: the residual is then partly
   // summed and the matrix unassembled.
   bool add_elements(const elements::TetElementKernel& kernel, const std::vector<double>& u, double* residual,
                     bool with_stiffness) const;
 
-  // Clamped rows and columns of the assembled matrix replaced by the identity.
-  void clamp_matrix() const;
   // Clamped entries of a residual (or load) array set to zero.
   void clamp_residual(double* residual) const;
 
  private:
+  // Clamped rows and columns of the assembled matrix replaced by the identity.
+  void clamp_matrix() const;
+
   int nodes_per_tet_;
   std::vector<int> element_nodes_;
   std::vector<elements::ElementGeometry> geometry_;
