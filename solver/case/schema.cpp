@@ -312,9 +312,11 @@ std::vector<KeySpec> build_schema() {
            "only at the updates, so a much looser solve can end Newton early with a wrong answer (docs/speed.md)"),
       choice("integration.krylov_preconditioner", "exact", {"exact", "symmetric"},
              "integration.newton = krylov: the Newton matrix that preconditions GMRES. 'exact': the matrix itself "
-             "(single-precision LU where friction makes it unsymmetric); 'symmetric': Cholesky of the symmetric "
-             "part of the matrix without friction's pressure coupling, half the factor and solve cost; where "
-             "that part is indefinite MUMPS LU takes over (docs/speed.md, Experiments)"),
+             "(single-precision LU where friction makes it unsymmetric), or 'symmetric' where that LU would not "
+             "fit in the machine's memory (then an indefinite part is factored with a raised diagonal); "
+             "'symmetric': Cholesky of the symmetric part of the matrix without friction's pressure coupling, "
+             "half the factor and solve cost; where that part is indefinite MUMPS LU takes over (docs/speed.md, "
+             "Experiments)"),
       real("integration.newton_convergence_coefficient", 0.05, 0.0, 1.0,
            "Newton stops when its error estimate is below this fraction of the error-test tolerance "
            "(IDA's epcon; IDA's own default is 0.33). The strain rate, a safety quantity, comes from IDA's y', "

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "integration/ksp_solver.hpp"
+#include "integration/machine_memory.hpp"
 #include "integration/petsc_session.hpp"
 #include "integration/sparse_cholesky.hpp"
 
@@ -66,7 +67,9 @@ PetscErrorCode apply_shell(PC pc, Vec b, Vec x) noexcept {
 
 }  // namespace
 
-NewtonMatrixFactor::NewtonMatrixFactor(std::vector<char> prescribed, const NewtonMatrixOptions& options) {
+NewtonMatrixFactor::NewtonMatrixFactor(std::vector<char> prescribed, const NewtonMatrixOptions& options)
+    : memory_bytes_(options.memory_bytes > 0 ? options.memory_bytes : usable_memory_bytes()),
+      symmetric_preconditioner_(options.symmetric_preconditioner) {
   widen_mumps_workspace(options.prefix);
   const KspOptions ksp_options{.method = ksp_method(options.method),
                                .relative_tolerance = options.relative_tolerance,
@@ -83,7 +86,26 @@ NewtonMatrixFactor::NewtonMatrixFactor(std::vector<char> prescribed, const Newto
 
 NewtonMatrixFactor::~NewtonMatrixFactor() = default;
 
+void NewtonMatrixFactor::weigh_lu_against_memory() {
+  if (!cholesky_->single_precision() || symmetric_preconditioner_) return;  // no LU planned
+  lu_beyond_memory_ = static_cast<double>(resident_bytes() + cholesky_->lu_extra_bytes()) >
+                      kMemoryShare * static_cast<double>(memory_bytes_);
+  if (lu_beyond_memory_) cholesky_->factor_symmetric_part_only();
+}
+
+bool NewtonMatrixFactor::factor_within_memory(Mat J) {
+  cholesky_factored_ = cholesky_->factor(J);
+  for (const double shift : kDiagonalShifts) {
+    if (cholesky_factored_) break;
+    ++shifted_;
+    cholesky_factored_ = cholesky_->factor(J, shift);
+  }
+  return cholesky_factored_;
+}
+
 bool NewtonMatrixFactor::factor(Mat J) {
+  if (cholesky_ && cholesky_->prepare(J)) weigh_lu_against_memory();
+  if (lu_beyond_memory_) return factor_within_memory(J);
   const bool struggling = ++setups_since_accepted_step_ > kSinglePrecisionSetupsWithoutStep;
   const bool try_cholesky = cholesky_ && cholesky_skips_left_ == 0 && !(struggling && cholesky_->single_precision());
   if (cholesky_skips_left_ > 0) --cholesky_skips_left_;
@@ -109,9 +131,15 @@ void NewtonMatrixFactor::attach_to(PC pc) {
 long NewtonMatrixFactor::iterations() const { return ksp_->iterations(); }
 
 NewtonMatrixFactor::Factorisations NewtonMatrixFactor::factorisations() const {
-  if (!cholesky_) return {0, 0, ksp_->factorizations()};
-  return {cholesky_->factorizations() - cholesky_->lu_factorizations(), cholesky_->lu_factorizations(),
-          ksp_->factorizations()};
+  if (!cholesky_) return {.ksp = ksp_->factorizations()};
+  const long lu = cholesky_->lu_factorizations();
+  return {.cholesky = cholesky_->factorizations() - lu,
+          .lu = lu,
+          .ksp = ksp_->factorizations(),
+          .shifted = shifted_,
+          .lu_beyond_memory = lu_beyond_memory_,
+          .factor_mb = static_cast<double>(cholesky_->cholesky_bytes() + (lu > 0 ? cholesky_->cholesky_bytes() : 0)) /
+                       (1024.0 * 1024.0)};
 }
 
 }  // namespace needlefem

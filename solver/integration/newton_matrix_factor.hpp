@@ -27,6 +27,17 @@
 //   c_j = 1/h puts entries of 1e10 beside the tissue's, beyond what single precision resolves.
 //   The default case never triggers it; the study design that needed it: docs/speed.md,
 //   "Measurements formerly in code comments".
+// - Memory: at the first setup of a pattern, a single-precision factor that would take the LU
+//   path weighs the bytes that the LU adds to the Cholesky factor against the memory left
+//   (machine_memory.hpp: this process's resident set, kMemoryShare of the machine's or the control
+//   group's memory). Where the LU does not fit, every setup factors the symmetric part by
+//   Cholesky instead (wants_symmetric_matrix(): the physics then assembles the matrix kept
+//   positive definite on purpose, as for integration.krylov_preconditioner = "symmetric"), and a
+//   symmetric part found indefinite is factored again with its diagonal raised by
+//   kDiagonalShifts in turn, never by MUMPS (whose double-precision LU is larger still). GMRES on
+//   the exact Jacobian's action makes up the difference: the answer is the same to the Newton
+//   tolerance, the iterations more. Why: level 2 of the r = 0.83 mm, 10° designs (8.4 M unknowns)
+//   needs 17 GB with the Cholesky factor and more than 24 GB with the LU (docs/accuracy.md §11).
 // When an earlier step's factor may still serve is the integrator's decision (StaleMatrixPolicy,
 // ida_integrator.cpp): it sees GMRES's iterations, which this component does not.
 //
@@ -34,6 +45,7 @@
 // calls factor() with the KSP's preconditioning matrix and whose apply calls solve()).
 #pragma once
 
+#include <cstddef>
 #include <memory>
 #include <string>
 #include <vector>
@@ -61,6 +73,8 @@ struct NewtonMatrixOptions {
   // physics/mechanics/surface_load.hpp): the single-precision factor is then Cholesky even where
   // the matrix is unsymmetric.
   bool symmetric_preconditioner = false;
+  // The memory the factor may plan to fill, in bytes; 0: the machine's (usable_memory_bytes()).
+  std::size_t memory_bytes = 0;
 };
 
 class NewtonMatrixFactor {
@@ -81,6 +95,9 @@ class NewtonMatrixFactor {
   bool solve(Vec b, Vec x);
   // The integrator accepted a step: a single-precision factor that gave way is tried again.
   void step_accepted() { setups_since_accepted_step_ = 0; }
+  // The matrix to assemble for the next setup is the symmetric positive definite approximation
+  // (NewtonMatrixOptions::symmetric_preconditioner, or the LU found not to fit in memory).
+  bool wants_symmetric_matrix() const { return symmetric_preconditioner_ || lu_beyond_memory_; }
   // Makes `pc` a PCSHELL around this component: its setup factors the preconditioning matrix,
   // its apply solves; where either fails, the PC's failed reason says so (a KSP then stops with
   // KSP_DIVERGED_PC_FAILED). This object must outlive the PC's use of it.
@@ -91,14 +108,24 @@ class NewtonMatrixFactor {
   // its structure (unsymmetric matrices where the factor preconditions GMRES), and by the KSP
   // (all of them for "mumps" and the Krylov methods; with "cholesky", the setups that these
   // could not factor or were not tried on).
+  // shifted: Cholesky factorisations of a symmetric part with a raised diagonal (counted in
+  // cholesky too); lu_beyond_memory: the LU did not fit (the policy above); factor_mb: the
+  // single-precision factor's values (L, and Uᵀ after an LU).
   struct Factorisations {
     long cholesky = 0;
     long lu = 0;
     long ksp = 0;
+    long shifted = 0;
+    bool lu_beyond_memory = false;
+    double factor_mb = 0.0;
   };
   Factorisations factorisations() const;
 
  private:
+  // The memory policy's choice, at a new pattern; the factorisation within it.
+  void weigh_lu_against_memory();
+  bool factor_within_memory(Mat J);
+
   std::unique_ptr<SparseCholesky> cholesky_;  // method "cholesky" only
   std::unique_ptr<KspSolver> ksp_;            // the method, or MUMPS LU where Cholesky fails
   bool cholesky_factored_ = false;            // which of the two holds the last factorisation
@@ -106,6 +133,14 @@ class NewtonMatrixFactor {
   int cholesky_skips_left_ = 0;  // setups that go straight to LU after an indefinite one
   static constexpr int kSinglePrecisionSetupsWithoutStep = 2;
   int setups_since_accepted_step_ = 0;
+  // The share of the usable memory a run may fill: the rest is the system's and the page cache's.
+  static constexpr double kMemoryShare = 0.9;
+  // Relative raises of an indefinite symmetric part's diagonal, tried in turn.
+  static constexpr double kDiagonalShifts[] = {1e-3, 1e-2, 1e-1, 1.0};
+  std::size_t memory_bytes_;
+  bool symmetric_preconditioner_;
+  bool lu_beyond_memory_ = false;
+  long shifted_ = 0;
 };
 
 }  // namespace needlefem

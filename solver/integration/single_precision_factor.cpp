@@ -41,7 +41,11 @@ void SinglePrecisionFactor::analyse(const cholmod_factor& symbolic, const cholmo
   supernodes_ = static_cast<int>(symbolic.nsuper);
   n_ = static_cast<int>(symbolic.n);
   max_update_ = symbolic.maxcsize;
-  values_.assign(symbolic.xsize, 0.0f);  // L's panels; LU adds Uᵀ's behind them
+  // L's panels; LU adds Uᵀ's behind them. Reserved for both (address space only until written)
+  // so that an LU's growth copies nothing: the copy would hold L's panels three times at once.
+  values_.clear();
+  values_.reserve(2 * symbolic.xsize);
+  values_.assign(symbolic.xsize, 0.0f);
   upper_offset_ = symbolic.xsize;
   work_.assign(n_, 0.0f);
   supernode_of_column_.resize(n_);

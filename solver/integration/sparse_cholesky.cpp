@@ -147,6 +147,12 @@ int SparseCholesky::shared_solve_supernodes() const { return single_ ? single_->
 
 double SparseCholesky::factor_entries() const { return factor_ ? common_->lnz : 0.0; }
 
+std::size_t SparseCholesky::cholesky_bytes() const { return single_ ? sizeof(float) * factor_->xsize : 0; }
+
+std::size_t SparseCholesky::lu_extra_bytes() const {
+  return single_ ? cholesky_bytes() + (2 * sizeof(std::size_t) + sizeof(double)) * entry_.size() : 0;
+}
+
 void SparseCholesky::analyse(Mat A) {
   const RowStructure structure(A);
   const PetscInt* row_start = structure.start();
@@ -213,7 +219,7 @@ void SparseCholesky::analyse(Mat A) {
   entries_ = row_start[n];
 }
 
-bool SparseCholesky::factor(Mat A) {
+bool SparseCholesky::prepare(Mat A) {
   PetscInt rows = 0, columns = 0;
   petsc_check(MatGetSize(A, &rows, &columns), "MatGetSize");
   if (rows != columns || rows != static_cast<PetscInt>(prescribed_.size()))
@@ -221,7 +227,13 @@ bool SparseCholesky::factor(Mat A) {
                                             prescribed_.size()));
   MatInfo info;
   petsc_check(MatGetInfo(A, MAT_LOCAL, &info), "MatGetInfo");
-  if (static_cast<PetscInt>(info.nz_used) != entries_) analyse(A);
+  if (static_cast<PetscInt>(info.nz_used) == entries_) return false;
+  analyse(A);
+  return true;
+}
+
+bool SparseCholesky::factor(Mat A, double diagonal_shift) {
+  prepare(A);
   bool unsymmetric = false;
   {
     MatrixValues values(A);
@@ -244,6 +256,13 @@ bool SparseCholesky::factor(Mat A) {
       }
     } else {
       for (std::size_t m = 0; m < entry_.size(); ++m) x[m] = 0.5 * (v[entry_[m]] + v[mirror_[m]]);
+      if (diagonal_shift > 0.0) {  // each column's first entry is its diagonal (rows sorted, row >= column)
+        const int* column_start = static_cast<const int*>(lower_->p);
+        const int* row_index = static_cast<const int*>(lower_->i);
+        for (int j = 0; j < static_cast<int>(lower_->ncol); ++j)
+          if (column_start[j] < column_start[j + 1] && row_index[column_start[j]] == j)
+            x[column_start[j]] = (1.0 + diagonal_shift) * std::abs(x[column_start[j]]);
+      }
     }
   }
   matrix_ = A;

@@ -30,6 +30,7 @@
 // single precision (0.4 mm brain-tip factor, 36.8 M entries: see docs/speed.md).
 #pragma once
 
+#include <cstddef>
 #include <memory>
 #include <string>
 #include <vector>
@@ -59,11 +60,18 @@ class SparseCholesky {
   SparseCholesky(const SparseCholesky&) = delete;
   SparseCholesky& operator=(const SparseCholesky&) = delete;
 
+  // The ordering and symbolic factorisation of A's pattern, unless it is the one analysed last.
+  // Returns whether it analysed (factor() calls it; before it, lu_extra_bytes() can be weighed).
+  bool prepare(Mat A);
   // Factor S_ff of A (single precision, unsymmetric J_ff: J_ff by LU). Returns false when S_ff
   // is not positive definite or the LU finds no pivot (last_failure() names the column);
   // throws for a non-square or unsymmetric-pattern matrix and CHOLMOD errors.
+  // diagonal_shift > 0 (Cholesky only): S_ff's diagonal entries d_jj are raised to
+  // (1 + diagonal_shift) |d_jj| first, a positive definite preconditioner of an indefinite S_ff.
   // A must stay unchanged until the last solve() with this factorisation (J_fp is read there).
-  bool factor(Mat A);
+  bool factor(Mat A, double diagonal_shift = 0.0);
+  // From now on an unsymmetric J_ff is factored as Unsymmetric::symmetric_part says.
+  void factor_symmetric_part_only() { unsymmetric_ = Unsymmetric::symmetric_part; }
   // x = J⁻¹ b in the sense above. b and x are sequential vectors of A's size.
   void solve(Vec b, Vec x);
 
@@ -77,6 +85,10 @@ class SparseCholesky {
   int shared_solve_supernodes() const;
   // Entries of the last factor L (lower triangle with diagonal).
   double factor_entries() const;
+  // Single precision, after prepare(): the bytes of the Cholesky factor's values, and the bytes
+  // an LU adds to them (Uᵀ's panels and the positions and values of J_ff's upper triangle).
+  std::size_t cholesky_bytes() const;
+  std::size_t lu_extra_bytes() const;
   const std::string& last_failure() const { return last_failure_; }
 
  private:

@@ -7,8 +7,9 @@
 // single precision an unsymmetric matrix is factored by LU and solved exactly (to single
 // precision); a team smaller than the factor planned for (a nested region here, OMP_THREAD_LIMIT
 // in tests/integration/CMakeLists.txt) gives the same solution. NewtonMatrixFactor, above them,
-// falls back to MUMPS LU where Cholesky fails and skips Cholesky for the next setups, and serves
-// a PETSc KSP as its preconditioner.
+// falls back to MUMPS LU where Cholesky fails and skips Cholesky for the next setups, factors the
+// symmetric part (shifted where indefinite) where the LU would not fit in memory, and serves a
+// PETSc KSP as its preconditioner.
 #include <cmath>
 #include <stdexcept>
 #include <utility>
@@ -467,6 +468,83 @@ TEST(NewtonMatrixFactor, IndefiniteMatrixFallsBackToLuAndSkipsCholeskyForThreeSe
   MatDestroy(&spd);
 }
 
+// FGMRES preconditioned by `factor` (attach_to) to a relative residual of 1e-12, at most 200
+// iterations: its converged reason and iterations.
+std::pair<KSPConvergedReason, PetscInt> preconditioned_gmres(NewtonMatrixFactor& factor, Mat A, Vec b, Vec x) {
+  KSP ksp = nullptr;
+  PC pc = nullptr;
+  petsc_check(KSPCreate(PETSC_COMM_SELF, &ksp), "KSPCreate");
+  petsc_check(KSPSetType(ksp, KSPFGMRES), "KSPSetType");
+  petsc_check(KSPGMRESSetRestart(ksp, 200), "KSPGMRESSetRestart");
+  petsc_check(KSPGetPC(ksp, &pc), "KSPGetPC");
+  factor.attach_to(pc);
+  petsc_check(KSPSetTolerances(ksp, 1e-12, PETSC_DEFAULT, PETSC_DEFAULT, 200), "KSPSetTolerances");
+  petsc_check(KSPSetOperators(ksp, A, A), "KSPSetOperators");
+  petsc_check(KSPSolve(ksp, b, x), "KSPSolve");
+  KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
+  PetscInt iterations = 0;
+  petsc_check(KSPGetConvergedReason(ksp, &reason), "KSPGetConvergedReason");
+  petsc_check(KSPGetIterationNumber(ksp, &iterations), "KSPGetIterationNumber");
+  KSPDestroy(&ksp);
+  return {reason, iterations};
+}
+
+// Where the LU would not fit in the memory the factor may fill (NewtonMatrixOptions::memory_bytes,
+// here 1 byte against 1 TB), an unsymmetric matrix is factored by the Cholesky factor of its
+// symmetric part and asks for the symmetric matrix form; FGMRES preconditioned by it still reaches
+// MUMPS's solution, in more iterations than with the LU. An indefinite symmetric part (diagonal 5.5
+// against eight -1 neighbours: four negative eigenvalues, the smallest -0.92) is factored with a raised diagonal
+// instead of by MUMPS, and FGMRES reaches MUMPS's solution of the indefinite matrix with it.
+TEST(NewtonMatrixFactor, LuBeyondTheMemoryFactorsTheSymmetricPartAndShiftsAnIndefiniteOne) {
+  Mat A = cube_matrix(16, 0.6);
+  const std::vector<char> prescribed = prescribe_rows(A);
+  Vec b = right_hand_side(rows_of(A)), reference = lu_solve(A, b), x = nullptr;
+  petsc_check(VecDuplicate(b, &x), "VecDuplicate");
+  PetscInt lu_iterations = 0, symmetric_iterations = 0;
+  for (const std::size_t memory : {std::size_t{1} << 40, std::size_t{1}}) {
+    NewtonMatrixFactor factor(prescribed,
+                              {.method = LinearSolver::cholesky, .preconditioner_only = true, .memory_bytes = memory});
+    const auto [reason, iterations] = preconditioned_gmres(factor, A, b, x);
+    const double error = relative_difference(x, reference);
+    const bool fits = memory > 1;
+    std::printf("memory %zu bytes: LU beyond it %d, FGMRES %ld iterations, |x - x_MUMPS| / |x_MUMPS| = %.2e\n", memory,
+                factor.factorisations().lu_beyond_memory, static_cast<long>(iterations), error);
+    EXPECT_GT(reason, 0);
+    EXPECT_LT(error, 1e-10);
+    EXPECT_EQ(factor.factorisations().lu_beyond_memory, !fits);
+    EXPECT_EQ(factor.wants_symmetric_matrix(), !fits);
+    EXPECT_EQ(factor.factorisations().lu, fits ? 1 : 0);
+    EXPECT_EQ(factor.factorisations().cholesky, fits ? 0 : 1);
+    EXPECT_EQ(factor.factorisations().ksp, 0);
+    (fits ? lu_iterations : symmetric_iterations) = iterations;
+  }
+  EXPECT_GT(symmetric_iterations, lu_iterations);
+  for (Vec v : {b, reference, x}) VecDestroy(&v);
+  MatDestroy(&A);
+
+  Mat indefinite = grid_matrix(5.5, 0.0);
+  const std::vector<char> grid_prescribed = prescribe_rows(indefinite);
+  {
+    SparseCholesky unshifted(grid_prescribed, SparseCholesky::Precision::single_precision);
+    EXPECT_FALSE(unshifted.factor(indefinite));  // the test needs an indefinite symmetric part
+  }
+  b = right_hand_side();
+  reference = lu_solve(indefinite, b);
+  petsc_check(VecDuplicate(b, &x), "VecDuplicate");
+  NewtonMatrixFactor factor(grid_prescribed,
+                            {.method = LinearSolver::cholesky, .preconditioner_only = true, .memory_bytes = 1});
+  const auto [reason, iterations] = preconditioned_gmres(factor, indefinite, b, x);
+  const double error = relative_difference(x, reference);
+  std::printf("indefinite, shifted %ld time(s): FGMRES %ld iterations, |x - x_MUMPS| / |x_MUMPS| = %.2e\n",
+              factor.factorisations().shifted, static_cast<long>(iterations), error);
+  EXPECT_GT(reason, 0);
+  EXPECT_LT(error, 1e-9);
+  EXPECT_GE(factor.factorisations().shifted, 1);
+  EXPECT_EQ(factor.factorisations().ksp, 0);
+  for (Vec v : {b, reference, x}) VecDestroy(&v);
+  MatDestroy(&indefinite);
+}
+
 // Behind PETSc's preconditioner interface (attach_to): flexible GMRES on an unsymmetric matrix,
 // preconditioned by the single-precision LU, reaches a relative residual of 1e-12 in a few
 // iterations and MUMPS's solution; a singular matrix, on which Cholesky and then MUMPS fail, is a
@@ -474,29 +552,12 @@ TEST(NewtonMatrixFactor, IndefiniteMatrixFallsBackToLuAndSkipsCholeskyForThreeSe
 // a single-precision solve is linear only to its round-off: plain GMRES's left-preconditioned
 // residual estimate then reaches 1e-12 while the error stays at 1e-7.
 TEST(NewtonMatrixFactor, AsAShellPreconditionerOfAPetscKsp) {
-  const auto gmres = [](NewtonMatrixFactor& factor, Mat A, Vec b, Vec x) {
-    KSP ksp = nullptr;
-    PC pc = nullptr;
-    petsc_check(KSPCreate(PETSC_COMM_SELF, &ksp), "KSPCreate");
-    petsc_check(KSPSetType(ksp, KSPFGMRES), "KSPSetType");
-    petsc_check(KSPGetPC(ksp, &pc), "KSPGetPC");
-    factor.attach_to(pc);
-    petsc_check(KSPSetTolerances(ksp, 1e-12, PETSC_DEFAULT, PETSC_DEFAULT, 50), "KSPSetTolerances");
-    petsc_check(KSPSetOperators(ksp, A, A), "KSPSetOperators");
-    petsc_check(KSPSolve(ksp, b, x), "KSPSolve");
-    KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
-    PetscInt iterations = 0;
-    petsc_check(KSPGetConvergedReason(ksp, &reason), "KSPGetConvergedReason");
-    petsc_check(KSPGetIterationNumber(ksp, &iterations), "KSPGetIterationNumber");
-    KSPDestroy(&ksp);
-    return std::make_pair(reason, iterations);
-  };
   Mat A = cube_matrix(16, 0.6);
   const std::vector<char> prescribed = prescribe_rows(A);
   Vec b = right_hand_side(rows_of(A)), reference = lu_solve(A, b), x = nullptr;
   petsc_check(VecDuplicate(b, &x), "VecDuplicate");
   NewtonMatrixFactor single(prescribed, {.method = LinearSolver::cholesky, .preconditioner_only = true});
-  const auto [reason, iterations] = gmres(single, A, b, x);
+  const auto [reason, iterations] = preconditioned_gmres(single, A, b, x);
   const double error = relative_difference(x, reference);
   std::printf("FGMRES with the single-precision LU as a shell preconditioner: %ld iterations, |x - x_MUMPS| / "
               "|x_MUMPS| = %.2e\n", static_cast<long>(iterations), error);
@@ -515,7 +576,7 @@ TEST(NewtonMatrixFactor, AsAShellPreconditionerOfAPetscKsp) {
   petsc_check(MatCreateVecs(singular, &x, &b), "MatCreateVecs");
   petsc_check(VecSet(b, 1.0), "VecSet");
   NewtonMatrixFactor exact(std::vector<char>(3, 0), {.method = LinearSolver::cholesky});
-  EXPECT_EQ(gmres(exact, singular, b, x).first, KSP_DIVERGED_PC_FAILED);
+  EXPECT_EQ(preconditioned_gmres(exact, singular, b, x).first, KSP_DIVERGED_PC_FAILED);
   for (Vec v : {b, x}) VecDestroy(&v);
   MatDestroy(&singular);
 }

@@ -79,7 +79,6 @@ MechanicsSystem::MechanicsSystem(const TetMesh& mesh, const material::Material& 
   prescribed_.assign(dofs_.dof_count, 0);
   for (const auto& d : conditions_.dofs) prescribed_[d.dof] = 1;
   create_newton_matrix();
-  symmetric_preconditioner_ = solver_options.symmetric_preconditioner;
   newton_factor_ = std::make_unique<NewtonMatrixFactor>(prescribed_, solver_options);
   check(VecCreateSeq(PETSC_COMM_SELF, dofs_.dof_count, &rhs_), "VecCreateSeq");
   check(VecDuplicate(rhs_, &solution_), "VecDuplicate");
@@ -238,7 +237,8 @@ DaeStatus MechanicsSystem::setup_jacobian(double t, Vec y, Vec ydot, double cj) 
   return guarded([&] {
     ReadArray state(y), rate(ydot);
     const bool inverted = !assemble_condensed_matrix(state.data(), cj);
-    const NewtonMatrix form = symmetric_preconditioner_ ? NewtonMatrix::symmetric_preconditioner : NewtonMatrix::exact;
+    const NewtonMatrix form =
+        newton_factor_->wants_symmetric_matrix() ? NewtonMatrix::symmetric_preconditioner : NewtonMatrix::exact;
     if (!inverted)
       for (const auto& load : surface_loads_)
         load->add_jacobian(t, state.data(), rate.data(), cj, dofs_, jacobian_, form);

@@ -174,10 +174,10 @@ class MechanicsSystem final : public DaeSystem {
   // Per tissue element, a, i, b: where entry (3 r_a + i, 3 c_b) of its blocks sits in the
   // jacobian_'s CSR values (the pattern is fixed at construction).
   std::vector<PetscInt> value_positions_;
-  std::unique_ptr<NewtonMatrixFactor> newton_factor_;  // factors jacobian_ at each setup, solves with it
-  // NewtonMatrixOptions::symmetric_preconditioner (Krylov Newton): setups assemble
-  // NewtonMatrix::symmetric_preconditioner, positive definite and cheap to factor and solve.
-  bool symmetric_preconditioner_ = false;
+  // Factors jacobian_ at each setup and solves with it; which matrix form a setup assembles
+  // (NewtonMatrix::exact, or symmetric_preconditioner: positive definite, cheap to factor and
+  // solve) is its wants_symmetric_matrix().
+  std::unique_ptr<NewtonMatrixFactor> newton_factor_;
   Vec rhs_ = nullptr, solution_ = nullptr;
 };
 
