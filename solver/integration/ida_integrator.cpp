@@ -240,6 +240,22 @@ void ida_check(int flag, const char* what) {
   if (flag < 0) throw std::runtime_error(fmt::format("IDA: {} failed ({})", what, IDAGetReturnFlagName(flag)));
 }
 
+// Tolerances, order and step settings IDA can work with; throws std::invalid_argument otherwise.
+void check_options(const IdaOptions& options) {
+  if (!(options.relative_tolerance > 0.0) || !(options.absolute_tolerance >= 0.0))
+    throw std::invalid_argument(fmt::format("IDA tolerances must be rtol > 0, atol >= 0, got {}, {}",
+                                            options.relative_tolerance, options.absolute_tolerance));
+  if (options.max_order < 1 || options.max_order > 5)
+    throw std::invalid_argument(fmt::format("IDA max order must be 1..5, got {}", options.max_order));
+  // Measured (docs/benchmarks/stability.json): with the tolerances scaled for fixed steps, IDA's
+  // Krylov Newton accepted one iteration per step and gave step-independent wrong answers.
+  if (options.fixed_step && options.newton == NewtonMethod::krylov)
+    throw std::invalid_argument("fixed time steps need integration.newton = modified (the Krylov Newton's "
+                                "stopping test is not meaningful with the error test switched off)");
+  if (options.fixed_step && !(*options.fixed_step > 0.0))
+    throw std::invalid_argument(fmt::format("fixed time step must be positive, got {}", *options.fixed_step));
+}
+
 }  // namespace
 
 struct IdaIntegrator::Impl {
@@ -272,6 +288,9 @@ struct IdaIntegrator::Impl {
   double tolerance_scale() const {
     return options.fixed_step ? kFixedStepErrorTolerance / options.relative_tolerance : 1.0;
   }
+  // IDA's linear solver (GMRES preconditioned by the system's Newton matrix, or the system's own
+  // direct solve) and, for the modified Newton with adaptive steps, the nonlinear solver.
+  void attach_linear_solver();
 
   IdaOptions options;
   MPI_Comm comm;
@@ -289,20 +308,42 @@ struct IdaIntegrator::Impl {
   Vec absolute_tolerances = nullptr;  // scaled as given to IDA; null: options.absolute_tolerance
 };
 
+void IdaIntegrator::Impl::attach_linear_solver() {
+  if (options.newton == NewtonMethod::krylov) {
+    linear_solver = SUNLinSol_SPGMR(y_nv, SUN_PREC_LEFT, options.krylov_dimension, context);
+    if (!linear_solver) throw std::runtime_error("creating IDA's GMRES solver failed");
+    ida_check(IDASetLinearSolver(ida, linear_solver, nullptr), "IDASetLinearSolver");
+    ida_check(IDASetPreconditioner(ida, preconditioner_setup, preconditioner_solve), "IDASetPreconditioner");
+    ida_check(IDASetEpsLin(ida, options.krylov_tolerance), "IDASetEpsLin");
+    callbacks.stale_matrix = StaleMatrixPolicy(
+        static_cast<SUNLinearSolverContent_SPGMR>(linear_solver->content), options.krylov_dimension,
+        options.krylov_stale_iterations > 0 ? std::min(options.krylov_stale_iterations, options.krylov_dimension)
+                                            : options.krylov_dimension,
+        options.krylov_aged_matrix_ratio);
+  } else {
+    jacobian = make_jacobian_handle(context);
+    linear_solver = make_dae_linear_solver(context, callbacks.dae);
+    if (!jacobian || !linear_solver) throw std::runtime_error("creating the IDA linear solver failed");
+    ida_check(IDASetLinearSolver(ida, linear_solver, jacobian), "IDASetLinearSolver");
+    ida_check(IDASetJacFn(ida, jacobian_callback), "IDASetJacFn");
+    // Fixed steps (stability studies) keep IDA's own test. With the rate factor reset per solve,
+    // the stability map's frictional brain tip at fixed steps did not complete (Newton's rate
+    // test failing at stick/slip changes, steps cut to a few µs that fixed-step mode does not
+    // grow back), where IDA's test completes them (docs/measurements.md, "Stability").
+    if (!options.fixed_step) {
+      newton = SUNNonlinSol_Newton(y_nv, context);
+      if (!newton) throw std::runtime_error("creating IDA's Newton solver failed");
+      ida_check(IDASetNonlinearSolver(ida, newton), "IDASetNonlinearSolver");
+      // After IDASetNonlinearSolver, which installs IDA's own test.
+      if (SUNNonlinSolSetConvTestFn(newton, modified_newton_test, &newton_test) != SUN_NLS_SUCCESS)
+        throw std::runtime_error("setting the modified Newton convergence test failed");
+    }
+  }
+}
+
 IdaIntegrator::IdaIntegrator(DaeSystem& system, const IdaOptions& options, double t0, MPI_Comm comm)
     : impl_(std::make_unique<Impl>(system, options, comm)) {
-  if (!(options.relative_tolerance > 0.0) || !(options.absolute_tolerance >= 0.0))
-    throw std::invalid_argument(fmt::format("IDA tolerances must be rtol > 0, atol >= 0, got {}, {}",
-                                            options.relative_tolerance, options.absolute_tolerance));
-  if (options.max_order < 1 || options.max_order > 5)
-    throw std::invalid_argument(fmt::format("IDA max order must be 1..5, got {}", options.max_order));
-  // Measured (docs/benchmarks/stability.json): with the tolerances scaled for fixed steps, IDA's
-  // Krylov Newton accepted one iteration per step and gave step-independent wrong answers.
-  if (options.fixed_step && options.newton == NewtonMethod::krylov)
-    throw std::invalid_argument("fixed time steps need integration.newton = modified (the Krylov Newton's "
-                                "stopping test is not meaningful with the error test switched off)");
-  if (options.fixed_step && !(*options.fixed_step > 0.0))
-    throw std::invalid_argument(fmt::format("fixed time step must be positive, got {}", *options.fixed_step));
+  check_options(options);
   Impl& m = *impl_;
   m.time = t0;
   if (SUNContext_Create(&m.comm, &m.context) != 0) throw std::runtime_error("SUNContext_Create failed");
@@ -335,36 +376,7 @@ IdaIntegrator::IdaIntegrator(DaeSystem& system, const IdaOptions& options, doubl
     ida_check(flag, "IDASetId");
   }
 
-  if (options.newton == NewtonMethod::krylov) {
-    m.linear_solver = SUNLinSol_SPGMR(m.y_nv, SUN_PREC_LEFT, options.krylov_dimension, m.context);
-    if (!m.linear_solver) throw std::runtime_error("creating IDA's GMRES solver failed");
-    ida_check(IDASetLinearSolver(m.ida, m.linear_solver, nullptr), "IDASetLinearSolver");
-    ida_check(IDASetPreconditioner(m.ida, preconditioner_setup, preconditioner_solve), "IDASetPreconditioner");
-    ida_check(IDASetEpsLin(m.ida, options.krylov_tolerance), "IDASetEpsLin");
-    m.callbacks.stale_matrix = StaleMatrixPolicy(
-        static_cast<SUNLinearSolverContent_SPGMR>(m.linear_solver->content), options.krylov_dimension,
-        options.krylov_stale_iterations > 0 ? std::min(options.krylov_stale_iterations, options.krylov_dimension)
-                                            : options.krylov_dimension,
-        options.krylov_aged_matrix_ratio);
-  } else {
-    m.jacobian = make_jacobian_handle(m.context);
-    m.linear_solver = make_dae_linear_solver(m.context, m.callbacks.dae);
-    if (!m.jacobian || !m.linear_solver) throw std::runtime_error("creating the IDA linear solver failed");
-    ida_check(IDASetLinearSolver(m.ida, m.linear_solver, m.jacobian), "IDASetLinearSolver");
-    ida_check(IDASetJacFn(m.ida, jacobian_callback), "IDASetJacFn");
-    // Fixed steps (stability studies) keep IDA's own test. With the rate factor reset per solve,
-    // the stability map's frictional brain tip at fixed steps did not complete (Newton's rate
-    // test failing at stick/slip changes, steps cut to a few µs that fixed-step mode does not
-    // grow back), where IDA's test completes them (docs/measurements.md, "Stability").
-    if (!options.fixed_step) {
-      m.newton = SUNNonlinSol_Newton(m.y_nv, m.context);
-      if (!m.newton) throw std::runtime_error("creating IDA's Newton solver failed");
-      ida_check(IDASetNonlinearSolver(m.ida, m.newton), "IDASetNonlinearSolver");
-      // After IDASetNonlinearSolver, which installs IDA's own test.
-      if (SUNNonlinSolSetConvTestFn(m.newton, modified_newton_test, &m.newton_test) != SUN_NLS_SUCCESS)
-        throw std::runtime_error("setting the modified Newton convergence test failed");
-    }
-  }
+  m.attach_linear_solver();
 
   ida_check(IDASetMaxOrd(m.ida, options.max_order), "IDASetMaxOrd");
   ida_check(IDASetDeltaCjLSetup(m.ida, options.newton_matrix_cj_change), "IDASetDeltaCjLSetup");

@@ -268,6 +268,11 @@ struct ResultFile::State {
   // The constructor's work: the file, the mesh, the case and every time-series dataset.
   void create(const TetMesh& mesh, const std::string& resolved_case_toml, std::vector<FieldSpec> time_series,
               std::size_t output_capacity);
+  // create()'s parts, in the order their objects go into the file: /mesh with the volume's XDMF
+  // grid, /mesh/surfaces with one XDMF grid each, /series at full capacity.
+  void write_mesh(const TetMesh& mesh);
+  void write_surfaces(hid_t mesh_group, const TetMesh& mesh);
+  void create_time_series(std::vector<FieldSpec> time_series);
   // append_time's work on the file (see there).
   void append(double time_s, const std::vector<std::span<const double>>& values);
   void set_time_count(long long count);
@@ -304,7 +309,13 @@ void ResultFile::State::create(const TetMesh& mesh, const std::string& resolved_
                   "create the file");
   write_text_attribute(s.file.get(), "case", resolved_case_toml);
 
-  // Mesh.
+  write_mesh(mesh);
+  // Time series: all datasets at full capacity now, so that appending never changes metadata.
+  if (!time_series.empty()) create_time_series(std::move(time_series));
+}
+
+void ResultFile::State::write_mesh(const TetMesh& mesh) {
+  State& s = *this;
   Handle mesh_group = create_group(s.file.get(), "mesh");
   std::vector<double> coordinates_mm;
   coordinates_mm.reserve(s.node_count * 3);
@@ -331,7 +342,7 @@ void ResultFile::State::create(const TetMesh& mesh, const std::string& resolved_
   for (std::size_t r = 0; r < mesh.region_names.size(); ++r)
     region_list += fmt::format("{}{}={}", r ? ", " : "", r, mesh.region_names[r]);
 
-  s.volume.h5_file_name = h5_path.filename().string();
+  s.volume.h5_file_name = s.h5_path.filename().string();
   s.volume.coordinates = {"/mesh/coordinates_mm", s.node_count, 3, false, false};
   XdmfTopology tetrahedra;
   tetrahedra.name = "mesh";
@@ -343,55 +354,59 @@ void ResultFile::State::create(const TetMesh& mesh, const std::string& resolved_
 
   s.surfaces.h5_file_name = s.volume.h5_file_name;
   s.surfaces.coordinates = s.volume.coordinates;
-  if (!mesh.surface_faces.empty()) {
-    Handle surfaces_group = create_group(mesh_group.get(), "surfaces");
-    const int per_face = mesh.nodes_per_face();
-    for (const auto& [name, faces] : mesh.surface_faces) {
-      const std::size_t face_count = faces.size() / per_face;
-      write_dataset(surfaces_group.get(), checked_field_name(name), H5T_STD_I32LE,
-                    {face_count, static_cast<hsize_t>(per_face)}, faces);
-      XdmfTopology surface;
-      surface.name = name;
-      surface.topology_type = per_face == 6 ? "Triangle_6" : "Triangle";
-      surface.connectivity = {"/mesh/surfaces/" + name, face_count, per_face, true, false};
-      surface.information = {{"length_unit", "mm"}};
-      s.surfaces.grids.push_back(std::move(surface));
-    }
-  }
+  write_surfaces(mesh_group.get(), mesh);
+}
 
-  // Time series: all datasets at full capacity now, so that appending never changes metadata.
-  if (!time_series.empty()) {
-    Handle series_group = create_group(s.file.get(), "series");
-    s.time_dataset = create_dataset(series_group.get(), "time", H5T_IEEE_F64LE, {s.capacity}, true);
-    write_text_attribute(s.time_dataset.get(), "unit", "s");
-    s.time_count_dataset = create_dataset(series_group.get(), "time_count", H5T_STD_I64LE, {1}, false);
-    const long long zero = 0;
-    check(H5Dwrite(s.time_count_dataset.get(), H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, &zero),
-          "write time_count");
-    write_text_attribute(s.time_count_dataset.get(), "note",
-                         "number of completed output times; later entries of /series are unwritten");
-    Handle node_group = create_group(series_group.get(), "node");
-    Handle cell_group = create_group(series_group.get(), "cell");
-    Handle steps_group = create_group(series_group.get(), "steps");
-    std::vector<Handle> step_groups;
-    for (std::size_t i = 0; i < s.capacity; ++i) step_groups.push_back(create_group(steps_group.get(), std::to_string(i)));
-    for (const FieldSpec& spec : time_series) {
-      if (!s.field_names.insert(checked_field_name(spec.name)).second)
-        throw std::invalid_argument(fmt::format("result field '{}' declared twice", spec.name));
-      const bool at_nodes = spec.centre == FieldCentre::node;
-      std::vector<hsize_t> dims{s.capacity, s.entities(spec.centre)};
-      if (spec.type != FieldType::scalar) dims.push_back(stored_components(spec.type));
-      Handle dataset = create_dataset(at_nodes ? node_group.get() : cell_group.get(), spec.name,
-                                      H5T_IEEE_F64LE, dims, true);
-      write_text_attribute(dataset.get(), "unit", spec.unit);
-      write_text_attribute(dataset.get(), "type", type_name(spec.type));
-      const std::string source = fmt::format("/series/{}/{}", at_nodes ? "node" : "cell", spec.name);
-      for (std::size_t i = 0; i < s.capacity; ++i) create_time_view(step_groups[i].get(), spec.name, source, dims, i);
-      s.add_attribute(spec, "/series/steps/{}/" + spec.name, true);
-      s.series_datasets.push_back(std::move(dataset));
-    }
-    s.series = std::move(time_series);
+void ResultFile::State::write_surfaces(hid_t mesh_group, const TetMesh& mesh) {
+  State& s = *this;
+  if (mesh.surface_faces.empty()) return;
+  Handle surfaces_group = create_group(mesh_group, "surfaces");
+  const int per_face = mesh.nodes_per_face();
+  for (const auto& [name, faces] : mesh.surface_faces) {
+    const std::size_t face_count = faces.size() / per_face;
+    write_dataset(surfaces_group.get(), checked_field_name(name), H5T_STD_I32LE,
+                  {face_count, static_cast<hsize_t>(per_face)}, faces);
+    XdmfTopology surface;
+    surface.name = name;
+    surface.topology_type = per_face == 6 ? "Triangle_6" : "Triangle";
+    surface.connectivity = {"/mesh/surfaces/" + name, face_count, per_face, true, false};
+    surface.information = {{"length_unit", "mm"}};
+    s.surfaces.grids.push_back(std::move(surface));
   }
+}
+
+void ResultFile::State::create_time_series(std::vector<FieldSpec> time_series) {
+  State& s = *this;
+  Handle series_group = create_group(s.file.get(), "series");
+  s.time_dataset = create_dataset(series_group.get(), "time", H5T_IEEE_F64LE, {s.capacity}, true);
+  write_text_attribute(s.time_dataset.get(), "unit", "s");
+  s.time_count_dataset = create_dataset(series_group.get(), "time_count", H5T_STD_I64LE, {1}, false);
+  const long long zero = 0;
+  check(H5Dwrite(s.time_count_dataset.get(), H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, &zero),
+        "write time_count");
+  write_text_attribute(s.time_count_dataset.get(), "note",
+                       "number of completed output times; later entries of /series are unwritten");
+  Handle node_group = create_group(series_group.get(), "node");
+  Handle cell_group = create_group(series_group.get(), "cell");
+  Handle steps_group = create_group(series_group.get(), "steps");
+  std::vector<Handle> step_groups;
+  for (std::size_t i = 0; i < s.capacity; ++i) step_groups.push_back(create_group(steps_group.get(), std::to_string(i)));
+  for (const FieldSpec& spec : time_series) {
+    if (!s.field_names.insert(checked_field_name(spec.name)).second)
+      throw std::invalid_argument(fmt::format("result field '{}' declared twice", spec.name));
+    const bool at_nodes = spec.centre == FieldCentre::node;
+    std::vector<hsize_t> dims{s.capacity, s.entities(spec.centre)};
+    if (spec.type != FieldType::scalar) dims.push_back(stored_components(spec.type));
+    Handle dataset = create_dataset(at_nodes ? node_group.get() : cell_group.get(), spec.name,
+                                    H5T_IEEE_F64LE, dims, true);
+    write_text_attribute(dataset.get(), "unit", spec.unit);
+    write_text_attribute(dataset.get(), "type", type_name(spec.type));
+    const std::string source = fmt::format("/series/{}/{}", at_nodes ? "node" : "cell", spec.name);
+    for (std::size_t i = 0; i < s.capacity; ++i) create_time_view(step_groups[i].get(), spec.name, source, dims, i);
+    s.add_attribute(spec, "/series/steps/{}/" + spec.name, true);
+    s.series_datasets.push_back(std::move(dataset));
+  }
+  s.series = std::move(time_series);
 }
 
 ResultFile::~ResultFile() {
