@@ -86,7 +86,7 @@ void run_mesh(const CaseOptions& options) {
   const std::filesystem::path out(options.out_dir);
   std::filesystem::create_directories(out);
   const run::RunSpecs specs = run::parse_run_specs(c);
-  const SceneModel scene = run::load_run_scene(c, specs, out, stderr);
+  const SceneModel scene = run::load_run_scene(specs, out, stderr);
   // The configured part count, or 2 to show what METIS buys when the mesh runs serially.
   const Partition partition = partition_tets(scene.mesh, std::max<int>(2, static_cast<int>(specs.mesh.partitions)));
 

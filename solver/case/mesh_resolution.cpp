@@ -1,8 +1,10 @@
 #include "case/mesh_resolution.hpp"
 
+#include <tuple>
+
 #include <fmt/format.h>
 
-#include "case/case.hpp"
+#include "case/specs/mesh_spec.hpp"
 
 namespace needlefem {
 
@@ -13,24 +15,22 @@ constexpr double kConvergedCoreElementMm = 0.4;
 constexpr double kConvergedOuterElementMm = 2.0;
 constexpr long kConvergedOrder = 2;
 
-bool rule_applies(const Case& c) { return c.text("scene.kind") == "brain-tip" && c.path("scene.mesh_file").empty(); }
-
 }  // namespace
 
-std::vector<std::string> coarser_than_converged(const Case& c) {
-  if (!rule_applies(c)) return {};
+std::vector<std::string> coarser_than_converged(const MeshSpec& mesh) {
+  if (!generates_brain_tip_scene(mesh)) return {};
   std::vector<std::string> coarser;
-  for (const auto& [key, limit] : {std::pair{"tissue.core_element_mm", kConvergedCoreElementMm},
-                                   std::pair{"tissue.outer_element_mm", kConvergedOuterElementMm}})
-    if (c.real(key) > limit) coarser.push_back(fmt::format("{} = {:g} mm > {:g} mm", key, c.real(key), limit));
-  if (c.integer("mesh.order") < kConvergedOrder)
-    coarser.push_back(fmt::format("mesh.order = {} < {}", c.integer("mesh.order"), kConvergedOrder));
+  for (const auto& [key, size, limit] :
+       {std::tuple{"tissue.core_element_mm", mesh.tissue.core_element_mm, kConvergedCoreElementMm},
+        std::tuple{"tissue.outer_element_mm", mesh.tissue.outer_element_mm, kConvergedOuterElementMm}})
+    if (size > limit) coarser.push_back(fmt::format("{} = {:g} mm > {:g} mm", key, size, limit));
+  if (mesh.order < kConvergedOrder) coarser.push_back(fmt::format("mesh.order = {} < {}", mesh.order, kConvergedOrder));
   return coarser;
 }
 
-nlohmann::json mesh_resolution_json(const Case& c) {
-  if (!rule_applies(c)) return nullptr;
-  const auto coarser = coarser_than_converged(c);
+nlohmann::json mesh_resolution_json(const MeshSpec& mesh) {
+  if (!generates_brain_tip_scene(mesh)) return nullptr;
+  const auto coarser = coarser_than_converged(mesh);
   return {{"as_converged", coarser.empty()},
           {"coarser", coarser},
           {"note", fmt::format("the convergence study (docs/accuracy.md section 4) found tissue.core_element_mm <= {:g} "

@@ -20,15 +20,15 @@
 
 namespace needlefem {
 
-class Case;
+struct MeshSpec;
 
-// Each way the case's mesh is coarser than the studied setting, as "KEY = VALUE UNIT > LIMIT UNIT"
+// Each way the mesh is coarser than the studied setting, as "KEY = VALUE UNIT > LIMIT UNIT"
 // ("tissue.core_element_mm = 1 mm > 0.4 mm"); empty when it is not, or when the rule does not apply.
-std::vector<std::string> coarser_than_converged(const Case& c);
+std::vector<std::string> coarser_than_converged(const MeshSpec& mesh);
 
 // summary.json's "mesh_resolution": {"as_converged": bool, "coarser": [...], "note": text};
 // null when the rule does not apply.
-nlohmann::json mesh_resolution_json(const Case& c);
+nlohmann::json mesh_resolution_json(const MeshSpec& mesh);
 
 // The warning that goes beside a verdict on a coarser mesh, e.g. "mesh coarser than the converged
 // setting (tissue.core_element_mm = 1 mm > 0.4 mm): the verdict may change on a finer mesh

@@ -96,44 +96,42 @@ int import_cad_tip(const NeedleTipSpec& spec, const TissueCubeSpec& tissue) {
 
 CadTipTriangulation triangulate_cad_tip(const NeedleTipSpec& spec, const TissueCubeSpec& tissue) {
   CadTipTriangulation out;
-  GmshSession::on_fresh_thread([&] {
-    GmshSession session("needlefem-cad-tip");
-    GmshSession::guarded([&] {
-      const int tip = import_cad_tip(spec, tissue);
-      double volume_mm3 = 0;
-      occ::getMass(3, tip, volume_mm3);
-      out.cad_volume_m3 = volume_mm3 / std::pow(kMmPerM, 3);
-      const double facet = spec.cad_facet_um / kMmPerM;
-      gmsh::option::setNumber("Mesh.MeshSizeMax", facet);
-      gmsh::option::setNumber("Mesh.MeshSizeMin", 0.0);
-      gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", std::ceil(360.0 / spec.cad_facet_deg));
-      // Sizes extend from the boundary curves into the faces: where a flat face's facets meet a curved
-      // edge, the trimmed core's edge (cad_needle.hpp) is their chord, off the curved edge by s²/(8R);
-      // a run with 50 µm facets inside the bevel face (sizes not extended) stalled at t = 0.08 s on
-      // the paper's tip at the default mesh.
-      // Delaunay: the fastest of gmsh's surface algorithms on the paper tip's 77k facets
-      // (docs/speed.md).
-      gmsh::option::setNumber("Mesh.Algorithm", 5);
-      gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
-      gmsh::option::setNumber("Mesh.ElementOrder", 1);
-      gmsh::model::mesh::generate(2);
-      std::vector<std::size_t> tags;
-      std::vector<double> xyz, parametric;
-      gmsh::model::mesh::getNodes(tags, xyz, parametric, -1, -1, false, false);
-      std::map<std::size_t, int> index;
-      for (std::size_t i = 0; i < tags.size(); ++i) {
-        index[tags[i]] = static_cast<int>(i);
-        out.vertices.push_back({xyz[3 * i] / kMmPerM, xyz[3 * i + 1] / kMmPerM, xyz[3 * i + 2] / kMmPerM});
-      }
-      gmsh::vectorpair faces;
-      gmsh::model::getBoundary({{3, tip}}, faces, false, false);
-      for (const auto& [dim, face] : faces) {
-        std::vector<std::size_t> elements, nodes;
-        gmsh::model::mesh::getElementsByType(kTriangle3, elements, nodes, std::abs(face));
-        for (std::size_t e = 0; e < elements.size(); ++e)
-          out.triangles.push_back({index.at(nodes[3 * e]), index.at(nodes[3 * e + 1]), index.at(nodes[3 * e + 2])});
-      }
-    });
+  GmshSession session("needlefem-cad-tip");
+  GmshSession::guarded([&] {
+    const int tip = import_cad_tip(spec, tissue);
+    double volume_mm3 = 0;
+    occ::getMass(3, tip, volume_mm3);
+    out.cad_volume_m3 = volume_mm3 / std::pow(kMmPerM, 3);
+    const double facet = spec.cad_facet_um / kMmPerM;
+    gmsh::option::setNumber("Mesh.MeshSizeMax", facet);
+    gmsh::option::setNumber("Mesh.MeshSizeMin", 0.0);
+    gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", std::ceil(360.0 / spec.cad_facet_deg));
+    // Sizes extend from the boundary curves into the faces: where a flat face's facets meet a curved
+    // edge, the trimmed core's edge (cad_needle.hpp) is their chord, off the curved edge by s²/(8R);
+    // a run with 50 µm facets inside the bevel face (sizes not extended) stalled at t = 0.08 s on
+    // the paper's tip at the default mesh.
+    // Delaunay: the fastest of gmsh's surface algorithms on the paper tip's 77k facets
+    // (docs/speed.md).
+    gmsh::option::setNumber("Mesh.Algorithm", 5);
+    gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
+    gmsh::option::setNumber("Mesh.ElementOrder", 1);
+    gmsh::model::mesh::generate(2);
+    std::vector<std::size_t> tags;
+    std::vector<double> xyz, parametric;
+    gmsh::model::mesh::getNodes(tags, xyz, parametric, -1, -1, false, false);
+    std::map<std::size_t, int> index;
+    for (std::size_t i = 0; i < tags.size(); ++i) {
+      index[tags[i]] = static_cast<int>(i);
+      out.vertices.push_back({xyz[3 * i] / kMmPerM, xyz[3 * i + 1] / kMmPerM, xyz[3 * i + 2] / kMmPerM});
+    }
+    gmsh::vectorpair faces;
+    gmsh::model::getBoundary({{3, tip}}, faces, false, false);
+    for (const auto& [dim, face] : faces) {
+      std::vector<std::size_t> elements, nodes;
+      gmsh::model::mesh::getElementsByType(kTriangle3, elements, nodes, std::abs(face));
+      for (std::size_t e = 0; e < elements.size(); ++e)
+        out.triangles.push_back({index.at(nodes[3 * e]), index.at(nodes[3 * e + 1]), index.at(nodes[3 * e + 2])});
+    }
   });
   return out;
 }

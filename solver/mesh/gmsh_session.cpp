@@ -1,8 +1,6 @@
 #include "mesh/gmsh_session.hpp"
 
-#include <exception>
 #include <stdexcept>
-#include <thread>
 
 #include <gmsh.h>
 #include <omp.h>
@@ -14,7 +12,9 @@ GmshSession::GmshSession(const std::string& model_name) : solver_threads_(omp_ge
   gmsh::option::setNumber("General.Terminal", 0);
   gmsh::option::setNumber("General.Verbosity", 1);
   // One thread and a fixed seed: the same case gives the same mesh up to the last digits of the
-  // curved nodes (on_fresh_thread and mesh/mesh_cache.hpp: why and what makes runs repeat).
+  // curved nodes, which gmsh's high-order optimiser takes in the order of the elements' memory
+  // addresses; runs repeat bit for bit because the scene is meshed once and read from the mesh
+  // cache (mesh/mesh_cache.hpp).
   gmsh::option::setNumber("General.NumThreads", 1);
   gmsh::model::add(model_name);
 }
@@ -30,19 +30,6 @@ void GmshSession::guarded(const std::function<void()>& body) {
   } catch (const std::string& message) {
     throw std::runtime_error("gmsh: " + message);
   }
-}
-
-void GmshSession::on_fresh_thread(const std::function<void()>& body) {
-  std::exception_ptr failure;
-  std::thread mesher([&] {
-    try {
-      body();
-    } catch (...) {
-      failure = std::current_exception();
-    }
-  });
-  mesher.join();
-  if (failure) std::rethrow_exception(failure);
 }
 
 }  // namespace needlefem

@@ -79,16 +79,14 @@ TetMesh extract_mesh(const CompliantTip& tip) {
 
 TetMesh mesh_compliant_tip(const CompliantTip& tip, const TipMeshSizes& sizes) {
   TetMesh mesh;
-  GmshSession::on_fresh_thread([&] {
-    GmshSession session("compliant_tip");
-    GmshSession::guarded([&] {
-      add_compliant_tip(tip);
-      gmsh::model::occ::synchronize();
-      set_size_field(tip, sizes);
-      gmsh::model::mesh::generate(3);
-      optimise_high_order();
-      mesh = extract_mesh(tip);
-    });
+  GmshSession session("compliant_tip");
+  GmshSession::guarded([&] {
+    add_compliant_tip(tip);
+    gmsh::model::occ::synchronize();
+    set_size_field(tip, sizes);
+    gmsh::model::mesh::generate(3);
+    optimise_high_order();
+    mesh = extract_mesh(tip);
   });
   return mesh;
 }

@@ -235,7 +235,7 @@ nlohmann::json summary_json(const Case& c, const RunSpecs& specs, const material
                  {"needle_edge_element_mm", scene->info.grading.edge_elements.median},
                  {"cache", mesh_cache_json(scene->info)},
                  {"cavity_rounding", to_json(scene->cavity_rounding)}};
-  if (const nlohmann::json resolution = mesh_resolution_json(c); !resolution.is_null())
+  if (const nlohmann::json resolution = mesh_resolution_json(specs.mesh); !resolution.is_null())
     s["mesh_resolution"] = resolution;
   s["files"] = {{"result", "result.h5"}, {"xdmf", "result.xdmf"}, {"history", "history.csv"}};
   s["software"] = software_versions();
@@ -264,12 +264,12 @@ void print_progress(std::FILE* stream, double t, double end, const IdaCounters& 
 
 }  // namespace
 
-SceneModel load_run_scene(const Case& c, const RunSpecs& specs, const std::filesystem::path& out_dir,
+SceneModel load_run_scene(const RunSpecs& specs, const std::filesystem::path& out_dir,
                           std::FILE* progress, std::shared_ptr<const contact::Needle>* needle) {
   SceneModel scene =
       load_scene_model(specs.mesh, specs.mechanics.boundary.groups, specs.pressure, specs.obstacle, out_dir, progress);
   if (!needle_in_contact(specs)) return scene;
-  contact::RoundedCavity rounded = contact::round_cavity_to_needle(run_needle_specs(c, specs), scene.mesh);
+  contact::RoundedCavity rounded = contact::round_cavity_to_needle(run_needle_specs(specs), scene.mesh);
   scene.cavity_rounding = rounded.rounding;
   if (needle) *needle = std::move(rounded.needle);
   if (scene.cavity_rounding.moved_nodes == 0) return scene;
@@ -317,7 +317,7 @@ class RunPass {
  private:
   void integrate() {
     std::shared_ptr<const contact::Needle> needle;  // the one the cavity was rounded to, untilted
-    scene_ = std::make_unique<SceneModel>(load_run_scene(c_, specs_, options_.out_dir, options_.progress, &needle));
+    scene_ = std::make_unique<SceneModel>(load_run_scene(specs_, options_.out_dir, options_.progress, &needle));
     require_valid_elements(*scene_);
     record_.mesh_s = seconds_since(start_);
     stop_if_asked(times_.front());
@@ -325,7 +325,7 @@ class RunPass {
 
     const PetscSession petsc(options_.petsc_options);
     material_ = std::make_unique<material::Material>(material::material_from_spec(specs_.mechanics.material));
-    const RunModel model = build_run_model(c_, specs_, mesh, *material_, std::move(needle), options_.head_tilt);
+    const RunModel model = build_run_model(specs_, mesh, *material_, std::move(needle), options_.head_tilt);
     mechanics::MechanicsSystem& system = *model.system;
     if (model.needle)
       needle_ = std::make_unique<NeedleOutput>(specs_.needle_deflection_check, mesh, system, model.needle);

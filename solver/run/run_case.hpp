@@ -52,8 +52,7 @@ struct RunOptions {
 // The scene a run solves: load_scene_model's mesh with its cavity moved onto the rounded needle
 // in contact (contact::round_cavity_to_needle) and its quality measured again. `needlefem mesh`
 // shows the same mesh. `needle` (optional): set to that needle (null without needle contact).
-// Takes the Case for the needle's motion (run_needle_specs).
-SceneModel load_run_scene(const Case& c, const RunSpecs& specs, const std::filesystem::path& out_dir,
+SceneModel load_run_scene(const RunSpecs& specs, const std::filesystem::path& out_dir,
                           std::FILE* progress, std::shared_ptr<const contact::Needle>* needle = nullptr);
 
 // Returns the summary written to out_dir/summary.json. The compliant tip in frictional contact

@@ -15,20 +15,20 @@ namespace needlefem::run {
 
 namespace {
 
-// The obstacle's contact; the needle obstacle's motion is parsed (and checked) only for it.
-std::shared_ptr<contact::PenaltyContact> obstacle_contact(const Case& c, const RunSpecs& specs, const TetMesh& mesh,
+// The obstacle's contact.
+std::shared_ptr<contact::PenaltyContact> obstacle_contact(const RunSpecs& specs, const TetMesh& mesh,
                                                           const contact::ContactParameters& contact_parameters) {
   std::optional<contact::NeedleSpecs> needle;
-  if (specs.obstacle.kind == ObstacleKind::needle) needle = run_needle_specs(c, specs);
+  if (specs.obstacle.kind == ObstacleKind::needle) needle = run_needle_specs(specs);
   return contact::scene_obstacle_contact(specs.obstacle, needle ? &*needle : nullptr, contact_parameters, mesh);
 }
 
 // A mesh scene's pressure and obstacle, added to `model.system` in that order. The obstacle is
 // built first: its errors come before any of the pressure's.
-void add_mesh_scene_loads(const Case& c, const RunSpecs& specs, const TetMesh& mesh,
+void add_mesh_scene_loads(const RunSpecs& specs, const TetMesh& mesh,
                           const contact::ContactParameters& contact_parameters, RunModel& model) {
   const mechanics::LoadHistory history = mechanics::LoadHistory::from_spec(specs.loading);
-  std::shared_ptr<contact::PenaltyContact> obstacle = obstacle_contact(c, specs, mesh, contact_parameters);
+  std::shared_ptr<contact::PenaltyContact> obstacle = obstacle_contact(specs, mesh, contact_parameters);
   if (!specs.pressure.groups.empty()) {
     auto pressure = std::make_shared<mechanics::SurfacePressure>(
         mesh, specs.pressure.groups,
@@ -42,13 +42,13 @@ void add_mesh_scene_loads(const Case& c, const RunSpecs& specs, const TetMesh& m
 
 }  // namespace
 
-RunModel build_run_model(const Case& c, const RunSpecs& specs, const TetMesh& mesh, const material::Material& material,
+RunModel build_run_model(const RunSpecs& specs, const TetMesh& mesh, const material::Material& material,
                          std::shared_ptr<const contact::Needle> needle,
                          std::shared_ptr<const contact::HeadTilt> head_tilt) {
   RunModel model{.system = mechanics::MechanicsSystem::from_spec(specs.mechanics, mesh,
                                                                   newton_matrix_options_from_spec(specs.integration)),
                  .needle = nullptr, .pressure = nullptr, .obstacle = nullptr};
-  if (needle && head_tilt) needle = contact::needle_from_spec(run_needle_specs(c, specs), nullptr, std::move(head_tilt));
+  if (needle && head_tilt) needle = contact::needle_from_spec(run_needle_specs(specs), nullptr, std::move(head_tilt));
   const contact::ContactParameters contact_parameters =
       run_contact_parameters(specs, material.instantaneous_shear_modulus());
   if (needle) {
@@ -56,7 +56,7 @@ RunModel build_run_model(const Case& c, const RunSpecs& specs, const TetMesh& me
     model.system->add_surface_load(needle_contact->surface_load());
     model.needle = std::move(needle_contact);
   }
-  if (specs.scene_kind == SceneKind::mesh) add_mesh_scene_loads(c, specs, mesh, contact_parameters, model);
+  if (specs.mesh.scene_kind == SceneKind::mesh) add_mesh_scene_loads(specs, mesh, contact_parameters, model);
   return model;
 }
 

@@ -8,8 +8,7 @@
 // (run_contact_parameters). The run's outputs only observe these loads (run/needle_output.hpp,
 // run/mesh_scene_loads.hpp).
 // Here in run/ rather than in physics/: which loads a run has is decided by the run's specs
-// (run_specs.hpp: needle_in_contact, the scene's kind), and the needle's motion is parsed from the
-// case where a needle is built (run_needle_specs); physics/ holds each load and knows no run.
+// (run_specs.hpp: needle_in_contact, the scene's kind); physics/ holds each load and knows no run.
 #pragma once
 
 #include <memory>
@@ -17,7 +16,6 @@
 #include "run/run_specs.hpp"
 
 namespace needlefem {
-class Case;
 struct TetMesh;
 }
 namespace needlefem::contact {
@@ -48,9 +46,8 @@ struct RunModel {
 // The model of `specs` on `mesh` (which must outlive it; PETSc must be initialised). `needle`: the
 // needle the cavity was rounded to (load_run_scene; null without needle contact), in contact as it
 // is, or built again with its head turned by `head_tilt` (the compliant tip's passes,
-// run/hinge_coupling.hpp). Takes the Case for the needle's motion (run_needle_specs). Throws the
-// CaseErrors of the system, the needle and the obstacle.
-RunModel build_run_model(const Case& c, const RunSpecs& specs, const TetMesh& mesh, const material::Material& material,
+// run/hinge_coupling.hpp). Throws the CaseErrors of the system, the needle and the obstacle.
+RunModel build_run_model(const RunSpecs& specs, const TetMesh& mesh, const material::Material& material,
                          std::shared_ptr<const contact::Needle> needle,
                          std::shared_ptr<const contact::HeadTilt> head_tilt);
 

@@ -11,21 +11,24 @@ namespace needlefem::run {
 // The mesh spec, which throws no CaseError, is parsed first: the mechanics spec takes a key from it.
 RunSpecs parse_run_specs(const Case& c) {
   MeshSpec mesh = parse_mesh_spec(c);
-  return {.scene_kind = parse_scene_kind(c),
-          .mechanics = parse_mechanics_spec(c, mesh),
-          .contact = parse_contact_spec(c),
-          .mesh = std::move(mesh),
-          .needle_deflection_check = parse_needle_deflection_check_spec(c),
-          .obstacle = parse_obstacle_spec(c),
-          .loading = parse_loading_spec(c),
-          .pressure = parse_pressure_spec(c),
-          .integration = parse_integration_spec(c),
-          .thresholds = parse_thresholds_spec(c),
-          .output = parse_output_spec(c)};
+  RunSpecs specs{.mechanics = parse_mechanics_spec(c, mesh),
+                 .contact = parse_contact_spec(c),
+                 .mesh = std::move(mesh),
+                 .needle_deflection_check = parse_needle_deflection_check_spec(c),
+                 .obstacle = parse_obstacle_spec(c),
+                 .loading = parse_loading_spec(c),
+                 .pressure = parse_pressure_spec(c),
+                 .integration = parse_integration_spec(c),
+                 .thresholds = parse_thresholds_spec(c),
+                 .output = parse_output_spec(c),
+                 .needle_motion = std::nullopt};
+  if (needle_in_contact(specs) || specs.obstacle.kind == ObstacleKind::needle)
+    specs.needle_motion = parse_motion_spec(c);
+  return specs;
 }
 
 bool needle_in_contact(const RunSpecs& specs) {
-  return specs.scene_kind == SceneKind::brain_tip && specs.contact.mode == ContactMode::frictional;
+  return specs.mesh.scene_kind == SceneKind::brain_tip && specs.contact.mode == ContactMode::frictional;
 }
 
 contact::ContactParameters run_contact_parameters(const RunSpecs& specs, double reference_modulus) {
@@ -33,8 +36,8 @@ contact::ContactParameters run_contact_parameters(const RunSpecs& specs, double 
                                                specs.mesh.refinement_level);
 }
 
-contact::NeedleSpecs run_needle_specs(const Case& c, const RunSpecs& specs) {
-  return {.mesh = specs.mesh, .motion = parse_motion_spec(c)};
+contact::NeedleSpecs run_needle_specs(const RunSpecs& specs) {
+  return {.mesh = specs.mesh, .motion = specs.needle_motion.value()};
 }
 
 }  // namespace needlefem::run

@@ -1,14 +1,17 @@
 // The case parsed once into the specs of the stages a run goes through (run_case.cpp; `needlefem
 // mesh` shows its scene, load_run_scene): each stage gets its own spec rather than the case and
-// its keys. Two specs are still parsed from the Case where they are used: the compliant tip's
-// steering (run/hinge_coupling.hpp) and the needle's motion (run_needle_specs).
+// its keys. One spec is still parsed from the Case where it is used: the compliant tip's steering
+// (run/hinge_coupling.hpp).
 #pragma once
+
+#include <optional>
 
 #include "case/specs/contact_spec.hpp"
 #include "case/specs/integration_spec.hpp"
 #include "case/specs/loading_spec.hpp"
 #include "case/specs/mechanics_spec.hpp"
 #include "case/specs/mesh_spec.hpp"
+#include "case/specs/motion_spec.hpp"
 #include "case/specs/output_spec.hpp"
 #include "case/specs/pressure_spec.hpp"
 #include "case/specs/scene_kind.hpp"
@@ -26,10 +29,9 @@ namespace needlefem::run {
 
 // The mesh spec alone parses scene.mesh_file, mesh.refinement_level and needle.edge_radius_um:
 // the mechanics (the file its errors name), the contact (its face sizes) and the needle in
-// contact take them from it. (scene.kind, contact.mode and [loading] are still parsed again by
-// the specs that need them.)
+// contact take them from it; the run takes the scene's kind from it. (Within the case's parsers,
+// scene.kind, contact.mode and [loading] are parsed again by the specs that need them.)
 struct RunSpecs {
-  SceneKind scene_kind;
   MechanicsSpec mechanics;
   ContactSpec contact;
   MeshSpec mesh;  // with the needle tip and the tissue cube a CAD tip's rules check it against
@@ -40,9 +42,12 @@ struct RunSpecs {
   IntegrationSpec integration;
   ThresholdsSpec thresholds;
   OutputSpec output;
+  // The needle's motion, where the run builds a needle: the needle in contact, or a mesh scene's
+  // needle obstacle. (A tied cavity's motion is the boundary spec's, in `mechanics`.)
+  std::optional<MotionSpec> needle_motion;
 };
 
-// Throws the CaseErrors of the stages' parsers.
+// Throws the CaseErrors of the stages' parsers, the needle's motion's last.
 RunSpecs parse_run_specs(const Case& c);
 
 // True for the brain-tip scene with contact.mode = "frictional": the needle is in contact with
@@ -57,8 +62,7 @@ bool needle_in_contact(const RunSpecs& specs);
 contact::ContactParameters run_contact_parameters(const RunSpecs& specs, double reference_modulus);
 
 // What the run's needle (in contact, or a mesh scene's needle obstacle) is built from: the mesh
-// spec with the needle's motion, parsed from `c` (parse_motion_spec, which refuses a ramp longer
-// than the motion) where a needle is built.
-contact::NeedleSpecs run_needle_specs(const Case& c, const RunSpecs& specs);
+// spec with the needle's motion. Only for runs that build a needle (specs.needle_motion is set).
+contact::NeedleSpecs run_needle_specs(const RunSpecs& specs);
 
 }  // namespace needlefem::run

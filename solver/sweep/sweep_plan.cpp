@@ -278,8 +278,7 @@ std::string point_name(const std::vector<std::string>& labels, const std::vector
   return fmt::format("{}", fmt::join(parts, "_"));
 }
 
-std::vector<RuleViolation> scene_violations(const Case& c) {
-  const MeshSpec mesh = parse_mesh_spec(c);
+std::vector<RuleViolation> scene_violations(const MeshSpec& mesh) {
   if (!generates_brain_tip_scene(mesh)) return {};
   return brain_tip_scene_violations(mesh.tissue, needle_tip_from_spec(mesh.needle_tip));
 }
@@ -316,8 +315,9 @@ DesignPoint design_point(const FlatTable& point, std::string name, nlohmann::jso
   try {
     const Case c = Case::parse(p.case_text, fmt::format("{} (point {})", origin, p.name));
     p.resolved = c.to_json();
-    p.violations = scene_violations(c);
-    p.coarse_mesh = coarser_than_converged(c);
+    const MeshSpec mesh = parse_mesh_spec(c);
+    p.violations = scene_violations(mesh);
+    p.coarse_mesh = coarser_than_converged(mesh);
   } catch (const CaseError& e) {
     p.violations = {{"case", e.what()}};
   }

@@ -8,15 +8,18 @@
 
 #include "case/case.hpp"
 #include "case/mesh_resolution.hpp"
+#include "case/specs/mesh_spec.hpp"
 
 using needlefem::Case;
 using needlefem::coarse_mesh_warning;
 using needlefem::coarser_than_converged;
 using needlefem::mesh_resolution_json;
+using needlefem::MeshSpec;
+using needlefem::parse_mesh_spec;
 
 namespace {
 std::vector<std::string> coarser(const std::vector<std::string>& overrides) {
-  return coarser_than_converged(Case::parse("[scene]\nkind = \"brain-tip\"\n", "tip.toml", overrides));
+  return coarser_than_converged(parse_mesh_spec(Case::parse("[scene]\nkind = \"brain-tip\"\n", "tip.toml", overrides)));
 }
 }  // namespace
 
@@ -24,7 +27,7 @@ TEST(MeshResolution, TheStudiedSettingAndFinerOnesAreConverged) {
   EXPECT_TRUE(coarser({}).empty());
   EXPECT_TRUE(coarser({"tissue.core_element_mm=0.2", "tissue.outer_element_mm=1.5"}).empty());
   EXPECT_TRUE(coarser({"mesh.refinement_level=2"}).empty());
-  const Case tip = Case::parse("[scene]\nkind = \"brain-tip\"\n", "tip.toml");
+  const MeshSpec tip = parse_mesh_spec(Case::parse("[scene]\nkind = \"brain-tip\"\n", "tip.toml"));
   EXPECT_EQ(mesh_resolution_json(tip)["as_converged"], true);
   EXPECT_EQ(coarse_mesh_warning(coarser_than_converged(tip)), "");
 }
@@ -43,10 +46,10 @@ TEST(MeshResolution, EachCoarserKeyIsNamedWithItsValueAndTheLimit) {
 }
 
 TEST(MeshResolution, ScenesTheStudyDidNotCoverAreNotJudged) {
-  const Case block = Case::parse("[scene]\nkind = \"block\"\n", "block.toml", {"mesh.order=1"});
+  const MeshSpec block = parse_mesh_spec(Case::parse("[scene]\nkind = \"block\"\n", "block.toml", {"mesh.order=1"}));
   EXPECT_TRUE(coarser_than_converged(block).empty());
   EXPECT_TRUE(mesh_resolution_json(block).is_null());
-  const Case user_mesh = Case::parse("[scene]\nkind = \"brain-tip\"\nmesh_file = \"tip.msh\"\n", "tip.toml",
-                                     {"tissue.core_element_mm=1"});
+  const MeshSpec user_mesh = parse_mesh_spec(Case::parse("[scene]\nkind = \"brain-tip\"\nmesh_file = \"tip.msh\"\n",
+                                                         "tip.toml", {"tissue.core_element_mm=1"}));
   EXPECT_TRUE(coarser_than_converged(user_mesh).empty());
 }
