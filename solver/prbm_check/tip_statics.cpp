@@ -9,6 +9,7 @@
 
 #include <fmt/core.h>
 #include <petscmat.h>
+#include <petscsnes.h>
 #include <petscvec.h>
 
 #include "integration/ksp_solver.hpp"
@@ -34,6 +35,10 @@ constexpr int kMaxHalvings = 8;
 constexpr double kResidualTolerance = 1e-7;
 constexpr double kCorrectionTolerance = 1e-10;
 
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
 }  // namespace
 
 struct CompliantTipStatics::Impl {
@@ -46,18 +51,39 @@ struct CompliantTipStatics::Impl {
   std::vector<double> u;  // current displacement, 3 per node
   double force_n = 0.0;   // load of the current state
   double tip_length_m = 0.0;
-  Vec rhs = nullptr, step = nullptr;
-  KspSolver solver{PETSC_COMM_SELF};
+  Vec rhs = nullptr, step = nullptr, iterate = nullptr;
+  KspSolver solver{PETSC_COMM_SELF};  // MUMPS LU (the options prefix nf_), also SNES's
+  SNES snes = nullptr;                // Newton with full steps and the tests above (newton())
+  // The load SNES's residual is evaluated at, and the time spent assembling in its current solve.
+  double snes_force = 0.0;
+  LoadKind snes_kind = LoadKind::dead;
+  double snes_assembly_seconds = 0.0;
 
   Impl(TetMesh m, const material::Material& material, std::vector<PetscInt> clamped_dofs)
       : mesh(std::move(m)),
         kernel(material, elements::Formulation::displacement),
         assembly(mesh.nodes_per_tet, mesh.tet_nodes, mesh.nodes, std::move(clamped_dofs)),
         rhs(assembly.create_vector()),
-        step(assembly.create_vector()) {}
+        step(assembly.create_vector()),
+        iterate(assembly.create_vector()) {
+    petsc_check(SNESCreate(PETSC_COMM_SELF, &snes), "SNESCreate");
+    petsc_check(SNESSetType(snes, SNESNEWTONLS), "SNESSetType");
+    SNESLineSearch line_search = nullptr;
+    petsc_check(SNESGetLineSearch(snes, &line_search), "SNESGetLineSearch");
+    petsc_check(SNESLineSearchSetType(line_search, SNESLINESEARCHBASIC), "SNESLineSearchSetType");
+    petsc_check(SNESSetKSP(snes, solver.ksp()), "SNESSetKSP");
+    petsc_check(SNESSetFunction(snes, rhs, snes_residual, this), "SNESSetFunction");
+    petsc_check(SNESSetJacobian(snes, assembly.matrix(), assembly.matrix(), snes_jacobian, this), "SNESSetJacobian");
+    petsc_check(SNESSetConvergenceTest(snes, snes_converged, this, nullptr), "SNESSetConvergenceTest");
+    petsc_check(SNESSetTolerances(snes, 0.0, 0.0, 0.0, kMaxNewtonIterations, -1), "SNESSetTolerances");
+    petsc_check(SNESSetOptionsPrefix(snes, "nf_tip_"), "SNESSetOptionsPrefix");
+    petsc_check(SNESSetFromOptions(snes), "SNESSetFromOptions");
+  }
   ~Impl() {
+    SNESDestroy(&snes);
     VecDestroy(&rhs);
     VecDestroy(&step);
+    VecDestroy(&iterate);
   }
 
   std::size_t dofs() const { return 3 * mesh.nodes.size(); }
@@ -84,14 +110,14 @@ struct CompliantTipStatics::Impl {
 
   static double bending_angle(const material::Mat3d& R) { return std::atan2(R(0, 2), R(2, 2)); }
 
-  // Residual r_int - f_ext (free dofs; clamped entries zero) into rhs, and the tangent of r_int
-  // (clamped rows and columns replaced by the identity) into matrix when with_tangent.
+  // Residual r_int - f_ext at u (free dofs; clamped entries zero) into `out`, and the tangent of
+  // r_int (clamped rows and columns replaced by the identity) into matrix when with_tangent.
   // Returns false if an element is inverted.
-  bool assemble(double force, LoadKind kind, bool with_tangent) {
+  bool assemble(double force, LoadKind kind, bool with_tangent, Vec out) {
     const material::Mat3d R = head_rotation(u);
     const std::array<double, 3> direction =
         kind == LoadKind::follower ? std::array<double, 3>{R(0, 0), R(1, 0), R(2, 0)} : std::array<double, 3>{1, 0, 0};
-    WriteArray residual(rhs);
+    WriteArray residual(out);
     for (std::size_t node = 0; node < mesh.nodes.size(); ++node)
       for (int i = 0; i < 3; ++i) residual.data()[3 * node + i] = -force * load_weight[node] * direction[i];
     return assembly.add_elements(kernel, u, residual.data(), with_tangent);
@@ -104,28 +130,67 @@ struct CompliantTipStatics::Impl {
     return std::abs(force) * std::sqrt(sum);
   }
 
-  // Newton from the current u at load `force`. Returns iterations, or -1 on failure (u undefined).
-  int newton(double force, LoadKind kind, double& linear_seconds) {
-    for (int iteration = 0; iteration <= kMaxNewtonIterations; ++iteration) {
-      if (!assemble(force, kind, true)) return -1;
-      PetscReal norm = 0.0;
-      petsc_check(VecNorm(rhs, NORM_2, &norm), "VecNorm");
-      if (!std::isfinite(norm)) return -1;
-      if (norm <= kResidualTolerance * load_norm(force)) return iteration;
-      if (iteration == kMaxNewtonIterations) break;
-      const auto start = std::chrono::steady_clock::now();
-      if (!solver.factor(assembly.matrix()) || !solver.solve(rhs, step)) return -1;
-      linear_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      ReadArray delta(step);
-      double largest_correction = 0.0, largest_u = 0.0;
-      for (std::size_t k = 0; k < u.size(); ++k) {
-        u[k] -= delta.data()[k];
-        largest_correction = std::max(largest_correction, std::abs(delta.data()[k]));
-        largest_u = std::max(largest_u, std::abs(u[k]));
-      }
-      if (largest_correction <= kCorrectionTolerance * largest_u) return iteration + 1;
+  // SNES's residual at x: u takes x's values, and the tangent is assembled with the residual (SNES
+  // asks for it at the same point next; snes_jacobian has nothing left to do). An inverted element
+  // is a domain error, which fails the solve.
+  static PetscErrorCode snes_residual(SNES snes, Vec x, Vec f, void* context) {
+    Impl& m = *static_cast<Impl*>(context);
+    const auto start = std::chrono::steady_clock::now();
+    {
+      const ReadArray values(x);
+      std::copy(values.data(), values.data() + m.u.size(), m.u.begin());
     }
-    return -1;
+    const bool valid = m.assemble(m.snes_force, m.snes_kind, true, f);
+    m.snes_assembly_seconds += seconds_since(start);
+    if (!valid) PetscCall(SNESSetFunctionDomainError(snes));
+    return 0;
+  }
+  static PetscErrorCode snes_jacobian(SNES, Vec, Mat, Mat, void*) { return 0; }
+
+  // The tests above: the residual against the load, then the last correction against the largest
+  // displacement; at most kMaxNewtonIterations corrections.
+  static PetscErrorCode snes_converged(SNES snes, PetscInt iteration, PetscReal, PetscReal, PetscReal residual_norm,
+                                       SNESConvergedReason* reason, void* context) {
+    const Impl& m = *static_cast<const Impl*>(context);
+    *reason = SNES_CONVERGED_ITERATING;
+    if (!std::isfinite(residual_norm)) {
+      *reason = SNES_DIVERGED_FNORM_NAN;
+    } else if (residual_norm <= kResidualTolerance * m.load_norm(m.snes_force)) {
+      *reason = SNES_CONVERGED_FNORM_ABS;
+    } else if (iteration > 0) {
+      Vec x = nullptr, correction = nullptr;
+      PetscCall(SNESGetSolution(snes, &x));
+      PetscCall(SNESGetSolutionUpdate(snes, &correction));
+      PetscReal largest_correction = 0.0, largest_u = 0.0;
+      PetscCall(VecNorm(correction, NORM_INFINITY, &largest_correction));
+      PetscCall(VecNorm(x, NORM_INFINITY, &largest_u));
+      if (largest_correction <= kCorrectionTolerance * largest_u) *reason = SNES_CONVERGED_SNORM_RELATIVE;
+    }
+    if (*reason == SNES_CONVERGED_ITERATING && iteration >= kMaxNewtonIterations) *reason = SNES_DIVERGED_MAX_IT;
+    return 0;
+  }
+
+  // Newton (PETSc SNES) from the current u at load `force`. Returns the corrections it took, or -1
+  // on failure (u undefined). `linear_seconds` gains the solve's time outside the assembly.
+  int newton(double force, LoadKind kind, double& linear_seconds) {
+    const auto start = std::chrono::steady_clock::now();
+    snes_force = force;
+    snes_kind = kind;
+    snes_assembly_seconds = 0.0;
+    {
+      WriteArray values(iterate);
+      std::copy(u.begin(), u.end(), values.data());
+    }
+    petsc_check(SNESSolve(snes, nullptr, iterate), "SNESSolve");
+    linear_seconds += seconds_since(start) - snes_assembly_seconds;
+    SNESConvergedReason reason = SNES_CONVERGED_ITERATING;
+    PetscInt iterations = 0;
+    petsc_check(SNESGetConvergedReason(snes, &reason), "SNESGetConvergedReason");
+    petsc_check(SNESGetIterationNumber(snes, &iterations), "SNESGetIterationNumber");
+    if (reason < 0) return -1;
+    const ReadArray values(iterate);
+    std::copy(values.data(), values.data() + u.size(), u.begin());
+    return static_cast<int>(iterations);
   }
 };
 
@@ -214,7 +279,8 @@ double CompliantTipStatics::linear_rotation_per_newton() {
   const std::vector<double> saved = m.u;
   std::fill(m.u.begin(), m.u.end(), 0.0);
   // At rest r_int = 0, so the assembled residual is -f_ext for 1 N: one solve gives u_lin per newton.
-  if (!m.assemble(1.0, LoadKind::dead, true) || !m.solver.factor(m.assembly.matrix()) || !m.solver.solve(m.rhs, m.step))
+  if (!m.assemble(1.0, LoadKind::dead, true, m.rhs) || !m.solver.factor(m.assembly.matrix()) ||
+      !m.solver.solve(m.rhs, m.step))
     throw std::runtime_error("compliant tip FEM: the linear stiffness matrix could not be factored");
   std::vector<double> linear(m.u.size());
   {

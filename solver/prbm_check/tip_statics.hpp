@@ -14,7 +14,8 @@
 //   dead      d = e_x, fixed in space (the pull of a magnet whose field does not turn with the head);
 //   follower  d = R_head e_x, turning with the head (paper 000's assumption behind Eq. 2.7: "the
 //             magnetic force is kept at the same angle phi with the needle head", here phi = 0).
-// Newton on r_int(u) - f_ext(u) with the tangent of r_int only: for the follower load the missing
+// Newton (PETSc SNES, full steps, MUMPS LU; options prefix nf_tip_, e.g. -nf_tip_snes_monitor) on
+// r_int(u) - f_ext(u) with the tangent of r_int only: for the follower load the missing
 // load stiffness only tilts the pull by the angle's change within one iteration, which changes the
 // moment about the neck to second order, so convergence stays fast. Loads are reached by
 // continuation from the last solution, halving the increment when Newton fails.
