@@ -10,6 +10,7 @@
 
 #include "case/specs/prbm_check_spec.hpp"
 #include "geometry/needle_tip.hpp"
+#include "prbm_check/seconds_since.hpp"
 #include "prbm_check/tip_mesh.hpp"
 #include "prbm_check/tip_statics.hpp"
 #include "steering/hinge.hpp"
@@ -19,10 +20,6 @@ namespace needlefem::prbm {
 namespace {
 
 constexpr double kDegPerRad = 180.0 / std::numbers::pi;
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 // Largest angle of the (ascending) rows before the first whose |error| reaches the tolerance.
 template <class Error>

@@ -19,6 +19,7 @@
 #include "physics/elements/tet_element.hpp"
 #include "physics/material/material.hpp"
 #include "physics/mechanics/tet_assembly.hpp"
+#include "prbm_check/seconds_since.hpp"
 
 namespace needlefem::prbm {
 
@@ -34,10 +35,6 @@ constexpr int kMaxHalvings = 8;
 // loads reach before the relative residual test.
 constexpr double kResidualTolerance = 1e-7;
 constexpr double kCorrectionTolerance = 1e-10;
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 }  // namespace
 
