@@ -56,6 +56,7 @@
 #include "physics/mechanics/dirichlet.hpp"
 #include "physics/mechanics/dof_map.hpp"
 #include "physics/mechanics/surface_load.hpp"
+#include "physics/mechanics/tet_assembly.hpp"
 
 namespace needlefem::mechanics {
 
@@ -115,7 +116,7 @@ class MechanicsSystem final : public DaeSystem {
   PetscInt viscous_offset(std::size_t tissue_element) const {
     return displacement_dofs() + viscous_per_element_ * static_cast<PetscInt>(tissue_element);
   }
-  PetscInt pressure_dofs() const { return pressure_unknowns() ? static_cast<PetscInt>(geometry_.size()) : 0; }
+  PetscInt pressure_dofs() const { return pressure_unknowns() ? static_cast<PetscInt>(assembly_.elements()) : 0; }
   PetscInt pressure_offset() const { return displacement_dofs() + viscous_dofs(); }
   // Element k's pressure in the state y, or nullptr where the element has none (p = U'(θ)).
   const double* element_pressure(const double* y, std::size_t tissue_element) const {
@@ -124,7 +125,9 @@ class MechanicsSystem final : public DaeSystem {
   const DofMap& dof_map() const { return dofs_; }
   const DirichletConditions& conditions() const { return conditions_; }
   const elements::TetElementKernel& kernel() const { return kernel_; }
-  const elements::ElementGeometry& geometry(std::size_t tissue_element) const { return geometry_[tissue_element]; }
+  const elements::ElementGeometry& geometry(std::size_t tissue_element) const {
+    return assembly_.geometry(tissue_element);
+  }
 
   // Force (N) the supports exert on the nodes of a named surface: the sum of the internal
   // nodal forces there (equilibrium holds at free nodes, so these are the reactions).
@@ -143,10 +146,7 @@ class MechanicsSystem final : public DaeSystem {
   // Internal force f_int (all displacement dofs) and, when rates are given, the viscous rows
   // F_Q. Returns false for an inverted element.
   bool assemble_internal(const double* y, const double* ydot, double* f_u, double* f_q, double* energy) const;
-  void gather_displacement(const double* y, std::size_t tissue_element, double* u_e) const;
-  // jacobian_ with its fixed pattern (value_positions_ too), at construction.
-  void create_newton_matrix();
-  // K̂ at the state y and c_j into jacobian_'s values, before surface loads and prescribed rows;
+  // K̂ at the state y and c_j into the matrix's values, before surface loads and prescribed rows;
   // keeps the condensation's data for solve_jacobian. Returns false for an inverted element.
   bool assemble_condensed_matrix(const double* y, double cj);
   // The mixed element keeps its pressures in the state.
@@ -156,7 +156,9 @@ class MechanicsSystem final : public DaeSystem {
   DofMap dofs_;
   DirichletConditions conditions_;
   elements::TetElementKernel kernel_;
-  std::vector<elements::ElementGeometry> geometry_;  // per tissue element
+  // Tissue elements (in dofs_.tissue_tets order) over blocks = nodes' first dof / 3: geometry,
+  // the Newton matrix's fixed pattern and the threaded element loops.
+  TetAssembly assembly_;
   PetscInt viscous_per_element_ = 0;
   // Mixed element: a_e and U''/V_e of each element at the last setup, for solve_jacobian.
   std::vector<std::array<double, elements::kMaxElementDofs>> pressure_gradient_;
@@ -164,17 +166,11 @@ class MechanicsSystem final : public DaeSystem {
   std::vector<char> prescribed_;  // per displacement dof
   std::vector<std::shared_ptr<SurfaceLoad>> surface_loads_;
   Rejections rejections_;
-  // The element loops' per-thread sums (mechanics_system.cpp, for_each_element_summed).
-  mutable std::vector<std::vector<double>> thread_sums_;
 
   // Newton matrix data kept from setup_jacobian for solve_jacobian.
   double cj_ = 0.0;
   std::vector<elements::CondensationElement> condensation_;  // per element (viscous only)
-  Mat jacobian_ = nullptr;
-  // Per tissue element, a, i, b: where entry (3 r_a + i, 3 c_b) of its blocks sits in the
-  // jacobian_'s CSR values (the pattern is fixed at construction).
-  std::vector<PetscInt> value_positions_;
-  // Factors jacobian_ at each setup and solves with it; which matrix form a setup assembles
+  // Factors the assembly's matrix at each setup and solves with it; which matrix form a setup assembles
   // (NewtonMatrix::exact, or symmetric_preconditioner: positive definite, cheap to factor and
   // solve) is its wants_symmetric_matrix().
   std::unique_ptr<NewtonMatrixFactor> newton_factor_;
