@@ -8,15 +8,18 @@
 
 namespace needlefem::run {
 
-// The mesh spec, which throws no CaseError, is parsed first: the mechanics spec takes a key from it.
+// The mesh spec, which throws no CaseError, is parsed first: the loading and mechanics specs take
+// the scene from it, and the mechanics spec the loading and contact.mode.
 RunSpecs parse_run_specs(const Case& c) {
   MeshSpec mesh = parse_mesh_spec(c);
-  RunSpecs specs{.mechanics = parse_mechanics_spec(c, mesh),
-                 .contact = parse_contact_spec(c),
+  ContactSpec contact = parse_contact_spec(c);
+  LoadingSpec loading = parse_loading_spec(c, mesh.scene_kind);
+  RunSpecs specs{.mechanics = parse_mechanics_spec(c, mesh, loading, contact.mode),
+                 .contact = std::move(contact),
                  .mesh = std::move(mesh),
                  .needle_deflection_check = parse_needle_deflection_check_spec(c),
                  .obstacle = parse_obstacle_spec(c),
-                 .loading = parse_loading_spec(c),
+                 .loading = std::move(loading),
                  .pressure = parse_pressure_spec(c),
                  .integration = parse_integration_spec(c),
                  .thresholds = parse_thresholds_spec(c),

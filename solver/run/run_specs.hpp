@@ -29,8 +29,8 @@ namespace needlefem::run {
 
 // The mesh spec alone parses scene.mesh_file, mesh.refinement_level and needle.edge_radius_um:
 // the mechanics (the file its errors name), the contact (its face sizes) and the needle in
-// contact take them from it; the run takes the scene's kind from it. (Within the case's parsers,
-// scene.kind, contact.mode and [loading] are parsed again by the specs that need them.)
+// contact take them from it; the run, the loading and the boundary take the scene's kind from it.
+// The boundary (in `mechanics`) holds a copy of `loading` and takes contact.mode from `contact`.
 struct RunSpecs {
   MechanicsSpec mechanics;
   ContactSpec contact;

@@ -26,10 +26,16 @@ std::filesystem::path fresh_folder() {
   return folder;
 }
 
+// The case's mechanics as a run parses it (run/run_specs.cpp).
+MechanicsSpec mechanics_spec(const Case& input) {
+  const MeshSpec mesh = parse_mesh_spec(input);
+  return parse_mechanics_spec(input, mesh, parse_loading_spec(input, mesh.scene_kind), parse_contact_spec(input).mode);
+}
+
 SceneModel meshed(const Case& input) {
   const auto folder = fresh_folder();
   const MeshSpec mesh = parse_mesh_spec(input);
-  SceneModel scene = load_scene_model(mesh, parse_boundary_spec(input, mesh).groups, parse_pressure_spec(input),
+  SceneModel scene = load_scene_model(mesh, mechanics_spec(input).boundary.groups, parse_pressure_spec(input),
                                       parse_obstacle_spec(input), folder, nullptr);
   std::filesystem::remove_all(folder);
   return scene;
@@ -52,7 +58,7 @@ double displacement_norm(const MechanicsSystem& system, Vec v) {
 Problem::Problem(const std::string& toml, const std::vector<std::string>& overrides)
     : input(Case::parse(toml, "test", overrides)),
       scene(meshed(input)),
-      system(MechanicsSystem::from_spec(parse_mechanics_spec(input, parse_mesh_spec(input)), scene.mesh,
+      system(MechanicsSystem::from_spec(mechanics_spec(input), scene.mesh,
                                         newton_matrix_options_from_spec(parse_integration_spec(input)))) {
   VecCreateSeq(PETSC_COMM_SELF, system->local_size(), &y);
   VecDuplicate(y, &ydot);

@@ -40,8 +40,9 @@ const std::array<std::string, 6>& block_face_names() {
   return names;
 }
 
-BoundarySpec parse_boundary_spec(const Case& c, const MeshSpec& mesh) {
-  BoundarySpec spec{.scene_kind = parse_scene_kind(c),
+BoundarySpec parse_boundary_spec(const Case& c, const MeshSpec& mesh, const LoadingSpec& loading,
+                                 ContactMode contact_mode) {
+  BoundarySpec spec{.scene_kind = mesh.scene_kind,
                     .block = parse_block_spec(c),
                     .groups = {.origin = c.origin(),
                                .fixed = c.texts("groups.fixed"),
@@ -49,9 +50,9 @@ BoundarySpec parse_boundary_spec(const Case& c, const MeshSpec& mesh) {
                                .displaced = c.texts("groups.displaced"),
                                .displacement_gradient = matrix(c, "displacement.gradient"),
                                .mesh_file = mesh.scene_mesh_file},
-                    .loading = parse_loading_spec(c),
+                    .loading = loading,
                     .tied_cavity_motion = std::nullopt};
-  if (spec.scene_kind == SceneKind::brain_tip && parse_contact_spec(c).mode == ContactMode::tied)
+  if (spec.scene_kind == SceneKind::brain_tip && contact_mode == ContactMode::tied)
     spec.tied_cavity_motion = parse_motion_spec(c);
   return spec;
 }

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "case/specs/contact_spec.hpp"
 #include "case/specs/loading_spec.hpp"
 #include "case/specs/motion_spec.hpp"
 #include "case/specs/scene_kind.hpp"
@@ -47,7 +48,9 @@ struct BoundarySpec {
   std::optional<MotionSpec> tied_cavity_motion;
 };
 
-// The mesh scene's file from `mesh` (parse_mesh_spec), which parses scene.mesh_file.
-BoundarySpec parse_boundary_spec(const Case& c, const MeshSpec& mesh);
+// The scene's kind and file from `mesh` (parse_mesh_spec, which parses scene.kind and
+// scene.mesh_file), its loading and contact.mode from the specs parsed from the same case.
+BoundarySpec parse_boundary_spec(const Case& c, const MeshSpec& mesh, const LoadingSpec& loading,
+                                 ContactMode contact_mode);
 
 }  // namespace needlefem

@@ -4,10 +4,10 @@
 
 namespace needlefem {
 
-LoadingSpec parse_loading_spec(const Case& c) {
+LoadingSpec parse_loading_spec(const Case& c, SceneKind scene_kind) {
   const std::vector<double> translation = c.reals("displacement.translation_mm");  // three entries (schema)
   return {.origin = c.origin(),
-          .scene_kind = parse_scene_kind(c),
+          .scene_kind = scene_kind,
           .motion_duration_s = c.real("motion.duration_s"),
           .ramp_s = c.real("loading.ramp_s"),
           .hold_s = c.real("loading.hold_s"),

@@ -25,6 +25,7 @@ struct LoadingSpec {
   std::optional<std::vector<double>> translation_history_mm;  // displacement.translation_history_mm
 };
 
-LoadingSpec parse_loading_spec(const Case& c);
+// scene_kind: the mesh spec's (parse_mesh_spec parses scene.kind).
+LoadingSpec parse_loading_spec(const Case& c, SceneKind scene_kind);
 
 }  // namespace needlefem

@@ -18,8 +18,9 @@ struct MechanicsSpec {
   BoundarySpec boundary;
 };
 
-// Throws the CaseErrors of parse_material_spec and parse_boundary_spec (which takes a key of
-// `mesh`, parse_mesh_spec's).
-MechanicsSpec parse_mechanics_spec(const Case& c, const MeshSpec& mesh);
+// Throws the CaseErrors of parse_material_spec and parse_boundary_spec (which takes the scene
+// from `mesh`, the loading and contact.mode from the specs parsed from the same case).
+MechanicsSpec parse_mechanics_spec(const Case& c, const MeshSpec& mesh, const LoadingSpec& loading,
+                                   ContactMode contact_mode);
 
 }  // namespace needlefem
