@@ -5,7 +5,6 @@
 //                         METIS partition effect, timings, whether the mesh came from the mesh
 //                         cache (mesh/mesh_cache.hpp), and the resolved case.
 #include <algorithm>
-#include <chrono>
 
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
@@ -18,6 +17,7 @@
 #include "output/result_file.hpp"
 #include "output/xdmf_text.hpp"
 #include "run/run_case.hpp"
+#include "wall_clock/seconds_since.hpp"
 
 namespace needlefem::app {
 
@@ -81,7 +81,7 @@ void write_json(const std::filesystem::path& file, const nlohmann::json& json) {
 }
 
 void run_mesh(const CaseOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = WallClock::now();
   const Case c = Case::load(options.case_file, options.overrides);
   const std::filesystem::path out(options.out_dir);
   std::filesystem::create_directories(out);
@@ -101,7 +101,7 @@ void run_mesh(const CaseOptions& options) {
     file.write_static_field(part, parts);
     file.close();
   }
-  const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double total = seconds_since(start);
   const auto report = mesh_report(c, scene, partition, total);
   write_json(out / "mesh_report.json", report);
   fmt::print("mesh: {} nodes, {} {} tets, {} inverted; written {}\n", scene.mesh.nodes.size(), scene.mesh.tet_count(),

@@ -22,6 +22,7 @@
 
 #include "case/specs/mesh_spec.hpp"
 #include "mesh/gmsh_session.hpp"
+#include "wall_clock/seconds_since.hpp"
 
 namespace needlefem {
 
@@ -232,10 +233,6 @@ void say(std::FILE* progress, const std::string& line) {
   std::fflush(progress);
 }
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 // Without the cache: the mesh written straight to msh_file.
 SceneMeshInfo mesh_uncached(const MeshSpec& spec, const fs::path& msh_file, std::FILE* progress, const std::string& cache,
                             const std::string& key, const std::string& note) {
@@ -308,7 +305,7 @@ SceneMeshInfo build_scene_mesh(const MeshSpec& spec, const fs::path& msh_file, s
                                                                {"needle.export_file", &spec.needle_export_file}};
   for (const auto& [key, file] : bypassing)
     if (!file->empty()) return mesh_uncached(spec, msh_file, progress, "bypassed", "", fmt::format("{} is given", key));
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = WallClock::now();
   const std::string key = mesh_cache_key(spec);
   const fs::path directory = mesh_cache_directory();
   if (directory.empty())

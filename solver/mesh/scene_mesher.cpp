@@ -10,7 +10,6 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <functional>
 #include <map>
@@ -26,6 +25,7 @@
 #include "mesh/cad_tip.hpp"
 #include "mesh/gmsh_session.hpp"
 #include "mesh/size_field.hpp"
+#include "wall_clock/seconds_since.hpp"
 
 namespace needlefem {
 
@@ -412,7 +412,7 @@ SceneMeshInfo generate_scene_mesh(const MeshSpec& spec, const std::filesystem::p
                scene_kind_name(spec.scene_kind), spec.refinement_level);
     std::fflush(progress);
   }
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = WallClock::now();
   SceneMeshInfo info;
   GmshSession session("needlefem");
   GmshSession::guarded([&] {
@@ -420,7 +420,7 @@ SceneMeshInfo generate_scene_mesh(const MeshSpec& spec, const std::filesystem::p
            : spec.scene_kind == SceneKind::mesh ? mesh_user_geometry(spec, msh_file)
                                                 : mesh_brain_tip(spec, msh_file);
   });
-  info.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  info.seconds = seconds_since(start);
   return info;
 }
 

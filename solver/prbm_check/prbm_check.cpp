@@ -2,7 +2,6 @@
 #include "prbm_check/prbm_check.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <numbers>
 
@@ -10,7 +9,7 @@
 
 #include "case/specs/prbm_check_spec.hpp"
 #include "geometry/needle_tip.hpp"
-#include "prbm_check/seconds_since.hpp"
+#include "wall_clock/seconds_since.hpp"
 #include "prbm_check/tip_mesh.hpp"
 #include "prbm_check/tip_statics.hpp"
 #include "steering/hinge.hpp"
@@ -58,12 +57,12 @@ PrbmCheckResult run_prbm_check(const Case& input) {
   result.hinge_stiffness_n_m_per_rad = hinge.hinge_stiffness_n_m_per_rad();
   result.prbm_lever_m = hinge.lever_arm_m();
 
-  auto start = std::chrono::steady_clock::now();
+  auto start = WallClock::now();
   TetMesh mesh = mesh_compliant_tip(tip, {result.element_mm * 1e-3, result.neck_element_mm * 1e-3});
   result.mesh_seconds = seconds_since(start);
   result.nodes = mesh.nodes.size();
 
-  start = std::chrono::steady_clock::now();
+  start = WallClock::now();
   CompliantTipStatics fem(tip, std::move(mesh), result.youngs_modulus_pa, result.poisson_ratio);
   result.elements = fem.elements();
   result.dofs = fem.dofs();

@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
@@ -19,7 +18,7 @@
 #include "physics/elements/tet_element.hpp"
 #include "physics/material/material.hpp"
 #include "physics/mechanics/tet_assembly.hpp"
-#include "prbm_check/seconds_since.hpp"
+#include "wall_clock/seconds_since.hpp"
 
 namespace needlefem::prbm {
 
@@ -132,7 +131,7 @@ struct CompliantTipStatics::Impl {
   // is a domain error, which fails the solve.
   static PetscErrorCode snes_residual(SNES snes, Vec x, Vec f, void* context) {
     Impl& m = *static_cast<Impl*>(context);
-    const auto start = std::chrono::steady_clock::now();
+    const auto start = WallClock::now();
     {
       const ReadArray values(x);
       std::copy(values.data(), values.data() + m.u.size(), m.u.begin());
@@ -170,7 +169,7 @@ struct CompliantTipStatics::Impl {
   // Newton (PETSc SNES) from the current u at load `force`. Returns the corrections it took, or -1
   // on failure (u undefined). `linear_seconds` gains the solve's time outside the assembly.
   int newton(double force, LoadKind kind, double& linear_seconds) {
-    const auto start = std::chrono::steady_clock::now();
+    const auto start = WallClock::now();
     snes_force = force;
     snes_kind = kind;
     snes_assembly_seconds = 0.0;

@@ -1,7 +1,6 @@
 #include "run/needle_output.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -13,6 +12,7 @@
 #include "case/specs/contact_spec.hpp"
 #include "integration/petsc_arrays.hpp"
 #include "physics/mechanics/mechanics_system.hpp"
+#include "wall_clock/seconds_since.hpp"
 
 namespace needlefem::run {
 
@@ -43,13 +43,13 @@ NeedleOutput::NeedleOutput(const NeedleDeflectionCheckSpec& check, const TetMesh
   poisson_ratio_ = check.poisson_ratio;
   const NeedleMotion& motion = contact_->needle().motion();
   needle_travel_m_ = std::abs(motion.insertion_speed) * motion.elapsed(motion.duration);
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = WallClock::now();
   try {
     elasticity_ = std::make_unique<contact::NeedleElasticity>(mesh, youngs_modulus_pa_, poisson_ratio_);
   } catch (const std::runtime_error& e) {
     throw case_error(check.origin, "needle.deflection_check", e.what());
   }
-  elasticity_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  elasticity_seconds_ += seconds_since(start);
   deflection_check_ = true;
   needle_dofs_ = elasticity_->dofs();
   needle_elements_ = elasticity_->elements();
@@ -88,10 +88,10 @@ void NeedleOutput::evaluate(double t, Vec y, Vec ydot) {
     head_tilts_.push_back(head_tilt_);
   }
   if (!elasticity_) return;
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = WallClock::now();
   const auto deflection =
       elasticity_->deflection(contact_->nodal_loads_in_needle_frame(t, state.data(), rate.data(), system_.dof_map()));
-  elasticity_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  elasticity_seconds_ += seconds_since(start);
   if (deflection.max_m >= largest_deflection_.max_m) {
     largest_deflection_ = deflection;
     largest_deflection_time_ = t;

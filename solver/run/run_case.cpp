@@ -6,7 +6,6 @@
 #include <unistd.h>
 
 #include <array>
-#include <chrono>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -41,12 +40,12 @@
 #include "run/run_model.hpp"
 #include "run/safety_report.hpp"
 #include "run/software_versions.hpp"
+#include "wall_clock/seconds_since.hpp"
 
 namespace needlefem::run {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
 using fields::kScalarQuantities;
 constexpr double kMmPerM = 1e3;
 constexpr double kStepReportSeconds = 10.0;
@@ -56,9 +55,6 @@ constexpr std::array<const char*, kScalarQuantities> kSummaryNames{
     "von_mises_pa", "principal_stress_pa", "log_strain", "strain_rate_per_s", "equivalent_strain_rate_per_s",
     "pressure_pa"};
 
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 double peak_rss_mb() {
   rusage usage{};
@@ -356,7 +352,7 @@ class RunPass {
 
     IdaIntegrator integrator(system, ida_options_from_spec(specs_.integration), times_.front(), PETSC_COMM_SELF);
     prepare_integrator(integrator, system);
-    last_report_ = Clock::now();
+    last_report_ = WallClock::now();
     double integration_s = 0.0;
     const double inversion_s = (specs_.mechanics.boundary.scene_kind == SceneKind::block
                                     ? mechanics::block_inversion_time_s(specs_.mechanics.boundary.block)
@@ -364,7 +360,7 @@ class RunPass {
                                    .value_or(std::numeric_limits<double>::infinity());
     for (const double t : times_) {
       stop_if_asked(integrator.time());
-      const auto step_start = Clock::now();
+      const auto step_start = WallClock::now();
       if (t >= inversion_s)
         throw c_.error("block.applied_gradient",
                        fmt::format("the applied field turns the block inside out at t = {:.4g} s (det F <= 0); the "
@@ -415,7 +411,7 @@ class RunPass {
   void report_step(const IdaIntegrator& integrator, const mechanics::MechanicsSystem& system, double t_step) {
     stop_if_asked(t_step);
     if (!options_.progress || seconds_since(last_report_) < kStepReportSeconds) return;
-    last_report_ = Clock::now();
+    last_report_ = WallClock::now();
     const IdaCounters k = integrator.counters();
     const auto& r = system.rejections();
     fmt::print(options_.progress, "run:   t = {:.6g} s  step {:.3g} s  order {}  steps {}  Newton its {}  "
@@ -434,7 +430,7 @@ class RunPass {
   // The fields, maxima, needle loads, reactions and safety metrics at output time t.
   void write_output_time(double t, const IdaIntegrator& integrator, const mechanics::MechanicsSystem& system,
                          PassOutputs& out) {
-    const auto output_start = Clock::now();
+    const auto output_start = WallClock::now();
     const TetMesh& mesh = scene_->mesh;
     const fields::TissueFields f = out.evaluator.evaluate(integrator.state(), integrator.state_rate());
     std::vector<std::span<const double>> values{f.displacement, f.velocity, f.cauchy_stress};
@@ -502,7 +498,7 @@ class RunPass {
   const Case& c_;
   const RunSpecs& specs_;
   const RunOptions& options_;
-  const Clock::time_point start_ = Clock::now();
+  const WallClock::time_point start_ = WallClock::now();
   const std::vector<double> times_ = output_times(specs_.output, specs_.loading);  // its case errors before anything is written
   RunRecord record_;
   std::unique_ptr<SceneModel> scene_;
@@ -510,7 +506,7 @@ class RunPass {
   std::unique_ptr<NeedleOutput> needle_;
   std::unique_ptr<MeshSceneLoads> scene_loads_;
   std::unique_ptr<SafetyReport> safety_;
-  Clock::time_point last_report_;  // of the last progress line of an accepted step
+  WallClock::time_point last_report_;  // of the last progress line of an accepted step
 };
 
 nlohmann::json run_one_pass(const Case& c, const RunSpecs& specs, const RunOptions& options) {

@@ -7,7 +7,6 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <chrono>
 #include <cmath>
 #include <csignal>
 #include <cstdlib>
@@ -21,6 +20,7 @@
 
 #include "case/mesh_resolution.hpp"
 #include "sweep/sweep_table.hpp"
+#include "wall_clock/seconds_since.hpp"
 
 extern char** environ;
 
@@ -30,7 +30,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
 
 struct LauncherRank {
   int rank = 0, size = 1;
@@ -135,7 +134,7 @@ class Progress {
   void finished(const std::string& what, std::size_t still_to_run) {
     ++done_;
     ++finished_;
-    const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
+    const double elapsed = seconds_since(start_);
     line(fmt::format("[{}/{}] {} | elapsed {}, ETA {}", done_, total_, what, duration(elapsed),
                      duration(elapsed / static_cast<double>(finished_) * static_cast<double>(still_to_run))));
   }
@@ -144,7 +143,7 @@ class Progress {
   std::FILE* stream_;
   std::size_t total_, done_, finished_ = 0;
   std::string prefix_;
-  Clock::time_point start_ = Clock::now();
+  WallClock::time_point start_ = WallClock::now();
 };
 
 std::string maxima_text(const nlohmann::json& summary) {
@@ -285,13 +284,13 @@ SweepOutcome run_sweep(const SweepPlan& plan, const SweepOptions& options) {
   const auto environment = child_environment(rank.launched, options.jobs);
   struct Running {
     std::size_t point;
-    Clock::time_point start;
+    WallClock::time_point start;
   };
   std::map<pid_t, Running> running;
   while (!queue.empty() || !running.empty()) {
     while (!queue.empty() && running.size() < static_cast<std::size_t>(options.jobs)) {
       const DesignPoint& p = plan.points[queue.front()];
-      running[start_point(p, options, environment)] = {queue.front(), Clock::now()};
+      running[start_point(p, options, environment)] = {queue.front(), WallClock::now()};
       queue.pop_front();
       progress.line(fmt::format("started {}", p.name));
     }
@@ -304,7 +303,7 @@ SweepOutcome run_sweep(const SweepPlan& plan, const SweepOptions& options) {
     const auto it = running.find(pid);
     if (it == running.end()) continue;
     const DesignPoint& p = plan.points[it->second.point];
-    const double seconds = std::chrono::duration<double>(Clock::now() - it->second.start).count();
+    const double seconds = seconds_since(it->second.start);
     running.erase(it);
     const PointRecord record = finished_point(p, options, status);
     if (record.status == "completed") ++outcome.completed;
