@@ -13,7 +13,7 @@
 
 #include <fmt/core.h>
 
-#include "case/case.hpp"
+#include "case/case_error.hpp"
 #include "integration/petsc_session.hpp"
 #include "output/xdmf_text.hpp"
 #include "physics/contact/hinged_needle.hpp"
@@ -48,7 +48,7 @@ struct Pull {
   double eq27_case_rad = 0.0;  // Eq. 2.7 with the case's tissue term
 };
 
-Pull pull_at(const Case& c, const steering::SteeringSetup& setup, double t) {
+Pull pull_at(const steering::SteeringSetup& setup, double t) {
   Pull pull;
   if (setup.schedule.empty()) return pull;
   const double depth = setup.run.insertion_speed_m_per_s * t;
@@ -57,7 +57,7 @@ Pull pull_at(const Case& c, const steering::SteeringSetup& setup, double t) {
   try {
     load = setup.model.head_load(pull.distance_m);
   } catch (const std::domain_error& e) {
-    throw c.error("steering.magnet_distance_mm", e.what());
+    throw case_error(setup.origin, "steering.magnet_distance_mm", e.what());
   }
   const double azimuth = setup.schedule.azimuth_at(depth);
   pull.flux_density_t = load.flux_density_t;
@@ -92,10 +92,10 @@ std::vector<double> imbalance(const std::vector<Pull>& pulls, const std::vector<
   return out;
 }
 
-std::vector<Tilt> head_moments_of(const Case& c, const nlohmann::json& summary, std::size_t count) {
+std::vector<Tilt> head_moments_of(const std::string& origin, const nlohmann::json& summary, std::size_t count) {
   const auto& moments = summary.at("head").at("moment_n_m");
   if (moments.size() != count)
-    throw c.error("output.interval_s", fmt::format("the run gave the head's moment at {} output times, not {}",
+    throw case_error(origin, "output.interval_s", fmt::format("the run gave the head's moment at {} output times, not {}",
                                                    moments.size(), count));
   std::vector<Tilt> out;
   for (const auto& m : moments) out.push_back({m.at(0).get<double>(), m.at(1).get<double>()});
@@ -177,19 +177,14 @@ std::string hinge_outputs(nlohmann::json& summary, const RunOptions& options, co
 
 }  // namespace
 
-bool head_turns_in_tissue(const RunSpecs& specs) {
-  return needle_in_contact(specs) && specs.mesh.needle_tip.kind == NeedleKind::compliant;
-}
-
-nlohmann::json run_hinged_case(const Case& c, const RunSpecs& specs, const RunOptions& options,
-                               const RunPass& run_pass) {
-  const steering::SteeringSetup setup = steering::steering_setup_from_case(c);
+nlohmann::json run_hinged_case(const RunSpecs& specs, const RunOptions& options, const RunPass& run_pass) {
+  const steering::SteeringSetup& setup = specs.hinge_steering.value();
   const double stiffness = setup.model.hinge.hinge_stiffness_n_m_per_rad();
   const std::vector<double> times = output_times(specs.output, specs.loading);
   std::vector<Pull> pulls;
-  for (double t : times) pulls.push_back(pull_at(c, setup, t));
+  for (double t : times) pulls.push_back(pull_at(setup, t));
   if (pulls.front().eq27_case_rad > kLargestStartTilt)
-    throw c.error("steering.magnet_distance_mm",
+    throw case_error(setup.origin, "steering.magnet_distance_mm",
                   fmt::format("the magnet turns the head by {:.3g} deg at t = {:.4g} s, before the tissue is loaded; "
                               "start the schedule with the magnet parked far away (e.g. 300 mm)",
                               pulls.front().eq27_case_rad * kDegPerRad, times.front()));
@@ -212,8 +207,8 @@ nlohmann::json run_hinged_case(const Case& c, const RunSpecs& specs, const RunOp
                  pass == 1 ? "Eq. 2.7 with the case's tissue term" : "the moment balance of the pass before");
     RunOptions pass_options = options;
     pass_options.head_tilt = std::make_shared<contact::HeadTilt>(times, tilts);
-    summary = run_pass(c, specs, pass_options);
-    moments = head_moments_of(c, summary, times.size());
+    summary = run_pass(specs, pass_options);
+    moments = head_moments_of(specs.output.origin, summary, times.size());
     residuals = imbalance(pulls, tilts, moments, stiffness);
     residual = *std::max_element(residuals.begin(), residuals.end());
     if (options.progress)

@@ -45,23 +45,15 @@
 #include "run/run_case.hpp"
 #include "run/run_specs.hpp"
 
-namespace needlefem {
-class Case;
-}
-
 namespace needlefem::run {
 
-// True when the case's needle is the compliant tip in frictional contact.
-bool head_turns_in_tissue(const RunSpecs& specs);
-
 // One run of the case with the head's tilt prescribed (options.head_tilt); returns its summary.
-using RunPass = std::function<nlohmann::json(const Case&, const RunSpecs&, const RunOptions&)>;
+using RunPass = std::function<nlohmann::json(const RunSpecs&, const RunOptions&)>;
 
 // Runs passes until the tilt balances the hinge (see above); returns the final summary, also
 // written to out_dir/summary.json. Throws CaseError for a magnet schedule that turns the head
-// before the tissue has been loaded (at the first output time). Takes the Case for the steering.*
-// keys and output.interval_s.
-nlohmann::json run_hinged_case(const Case& c, const RunSpecs& specs, const RunOptions& options,
-                               const RunPass& run_pass);
+// before the tissue has been loaded (at the first output time). The magnet and hinge are
+// specs.hinge_steering (head_turns_in_tissue(specs) must hold).
+nlohmann::json run_hinged_case(const RunSpecs& specs, const RunOptions& options, const RunPass& run_pass);
 
 }  // namespace needlefem::run

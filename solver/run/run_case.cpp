@@ -517,8 +517,10 @@ nlohmann::json run_one_pass(const Case& c, const RunSpecs& specs, const RunOptio
 
 nlohmann::json run_case(const Case& c, const RunOptions& options) {
   const RunSpecs specs = parse_run_specs(c);  // its case errors before anything is written
-  return head_turns_in_tissue(specs) ? run_hinged_case(c, specs, options, run_one_pass)
-                                        : run_one_pass(c, specs, options);
+  if (!head_turns_in_tissue(specs)) return run_one_pass(c, specs, options);
+  return run_hinged_case(specs, options, [&c](const RunSpecs& pass_specs, const RunOptions& pass_options) {
+    return run_one_pass(c, pass_specs, pass_options);
+  });
 }
 
 }  // namespace needlefem::run

@@ -24,10 +24,16 @@ RunSpecs parse_run_specs(const Case& c) {
                  .integration = parse_integration_spec(c),
                  .thresholds = parse_thresholds_spec(c),
                  .output = parse_output_spec(c),
-                 .needle_motion = std::nullopt};
+                 .needle_motion = std::nullopt,
+                 .hinge_steering = std::nullopt};
   if (needle_in_contact(specs) || specs.obstacle.kind == ObstacleKind::needle)
     specs.needle_motion = parse_motion_spec(c);
+  if (head_turns_in_tissue(specs)) specs.hinge_steering = steering::steering_setup_from_case(c);
   return specs;
+}
+
+bool head_turns_in_tissue(const RunSpecs& specs) {
+  return needle_in_contact(specs) && specs.mesh.needle_tip.kind == NeedleKind::compliant;
 }
 
 bool needle_in_contact(const RunSpecs& specs) {

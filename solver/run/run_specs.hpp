@@ -1,7 +1,6 @@
 // The case parsed once into the specs of the stages a run goes through (run_case.cpp; `needlefem
 // mesh` shows its scene, load_run_scene): each stage gets its own spec rather than the case and
-// its keys. One spec is still parsed from the Case where it is used: the compliant tip's steering
-// (run/hinge_coupling.hpp).
+// its keys.
 #pragma once
 
 #include <optional>
@@ -16,6 +15,7 @@
 #include "case/specs/pressure_spec.hpp"
 #include "case/specs/scene_kind.hpp"
 #include "case/specs/thresholds_spec.hpp"
+#include "steering/steering_case.hpp"
 
 namespace needlefem {
 class Case;
@@ -45,10 +45,17 @@ struct RunSpecs {
   // The needle's motion, where the run builds a needle: the needle in contact, or a mesh scene's
   // needle obstacle. (A tied cavity's motion is the boundary spec's, in `mechanics`.)
   std::optional<MotionSpec> needle_motion;
+  // The magnet and hinge of a compliant tip turning in tissue (head_turns_in_tissue), with the
+  // schedule's rules checked: the hinge coupling's input (run/hinge_coupling.hpp).
+  std::optional<steering::SteeringSetup> hinge_steering;
 };
 
-// Throws the CaseErrors of the stages' parsers, the needle's motion's last.
+// Throws the CaseErrors of the stages' parsers, the needle's motion's and the steering's last.
 RunSpecs parse_run_specs(const Case& c);
+
+// True when the case's needle is the compliant tip in frictional contact: its head turns on the
+// hinge while the needle moves (run/hinge_coupling.hpp).
+bool head_turns_in_tissue(const RunSpecs& specs);
 
 // True for the brain-tip scene with contact.mode = "frictional": the needle is in contact with
 // the cavity (physics/contact/needle_contact.hpp), which is rounded to it, and the contact is a

@@ -110,6 +110,7 @@ SteeringSetup steering_setup_from_case(const Case& input) {
   if (2.0 * scene.obstacle_radius_m >= std::min({block[0], block[1], block[2]}))
     throw input.error("steering.obstacle_radius_mm", "the obstacle does not fit inside the block");
   setup.target_tolerance_m = spec.target_tolerance_mm * mm;
+  setup.origin = input.origin();
   return setup;
 }
 

@@ -3,6 +3,8 @@
 // magnet schedule.
 #pragma once
 
+#include <string>
+
 #include "case/case.hpp"
 #include "steering/steering_path.hpp"
 
@@ -14,6 +16,7 @@ struct SteeringSetup {
   SteeringRun run;
   ObstacleScene scene;
   double target_tolerance_m = 0.0;
+  std::string origin;  // the case's, for the CaseErrors of the schedule where it is used (run/hinge_coupling.cpp)
 };
 
 // Throws CaseError ("FILE: key 'steering.KEY': reason") when the schedule is malformed: both or
