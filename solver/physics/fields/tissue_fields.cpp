@@ -67,8 +67,8 @@ bool TissueFieldEvaluator::evaluate_element(std::size_t k, const double* state, 
   const int n = mesh_.nodes_per_tet, points = static_cast<int>(shape_values_.size());
   const std::size_t e = dofs.tissue_tets[k];
   std::array<double, elements::kMaxElementDofs> u_e, v_e;
-  gather_element_values(k, state, u_e.data());
-  gather_element_values(k, rate, v_e.data());
+  system_.gather(k, state, u_e.data());
+  system_.gather(k, rate, v_e.data());
   const double* viscous = system_.kernel().prony_terms() ? state + system_.viscous_offset(k) : nullptr;
   const auto& geometry = system_.geometry(k);
   const elements::ElementResult result =
@@ -158,17 +158,10 @@ std::vector<material::Mat3d> TissueFieldEvaluator::deformation_gradients(Vec y) 
 #pragma omp parallel for schedule(static)
   for (std::size_t k = 0; k < system_.dof_map().tissue_tets.size(); ++k) {
     std::array<double, elements::kMaxElementDofs> u_e;
-    gather_element_values(k, state.data(), u_e.data());
+    system_.gather(k, state.data(), u_e.data());
     for (int q = 0; q < points; ++q) elements::add_field_gradient(system_.geometry(k), q, u_e.data(), F[k * points + q]);
   }
   return F;
-}
-
-void TissueFieldEvaluator::gather_element_values(std::size_t k, const double* values, double* element_values) const {
-  const auto& dofs = system_.dof_map();
-  const auto& tet = mesh_.tet(dofs.tissue_tets[k]);
-  for (int a = 0; a < mesh_.nodes_per_tet; ++a)
-    for (int c = 0; c < 3; ++c) element_values[3 * a + c] = values[dofs.dof(tet[a], c)];
 }
 
 }  // namespace needlefem::fields

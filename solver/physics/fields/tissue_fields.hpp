@@ -81,8 +81,6 @@ class TissueFieldEvaluator {
  private:
   // Node fields filled, every other array sized and zeroed (maxima at -inf).
   TissueFields node_fields(const double* state, const double* rate) const;
-  // Tissue element k's node values (nodes x 3) of the node field `values` (a state or a rate).
-  void gather_element_values(std::size_t k, const double* values, double* element_values) const;
   // Tissue element k's point values, cell maxima and mean Cauchy stress into `out`; the first
   // point of each of its maxima into `largest_point` and its kinetic energy added to
   // `kinetic_energy`. False (nothing written) for an inverted element.

@@ -128,6 +128,11 @@ class MechanicsSystem final : public DaeSystem {
   const elements::ElementGeometry& geometry(std::size_t tissue_element) const {
     return assembly_.geometry(tissue_element);
   }
+  // A tissue element's nodal values (3 per node) out of an array laid out like the state's
+  // displacements (y, y', or a field of the same layout).
+  void gather(std::size_t tissue_element, const double* values, double* element_values) const {
+    assembly_.gather(tissue_element, values, element_values);
+  }
 
   // Force (N) the supports exert on the nodes of a named surface: the sum of the internal
   // nodal forces there (equilibrium holds at free nodes, so these are the reactions).
