@@ -9,10 +9,10 @@
 
 #include "case/specs/prbm_check_spec.hpp"
 #include "geometry/needle_tip.hpp"
-#include "wall_clock/seconds_since.hpp"
 #include "prbm_check/tip_mesh.hpp"
 #include "prbm_check/tip_statics.hpp"
 #include "steering/hinge.hpp"
+#include "wall_clock/seconds_since.hpp"
 
 namespace needlefem::prbm {
 

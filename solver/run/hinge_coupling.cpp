@@ -180,7 +180,7 @@ std::string hinge_outputs(nlohmann::json& summary, const RunOptions& options, co
 nlohmann::json run_hinged_case(const RunSpecs& specs, const RunOptions& options, const RunPass& run_pass) {
   const steering::SteeringSetup& setup = specs.hinge_steering.value();
   const double stiffness = setup.model.hinge.hinge_stiffness_n_m_per_rad();
-  const std::vector<double> times = output_times(specs.output, specs.loading);
+  const std::vector<double> times = output_times(specs.output, specs.loading());
   std::vector<Pull> pulls;
   for (double t : times) pulls.push_back(pull_at(setup, t));
   if (pulls.front().eq27_case_rad > kLargestStartTilt)

@@ -499,7 +499,7 @@ class RunPass {
   const RunSpecs& specs_;
   const RunOptions& options_;
   const WallClock::time_point start_ = WallClock::now();
-  const std::vector<double> times_ = output_times(specs_.output, specs_.loading);  // its case errors before anything is written
+  const std::vector<double> times_ = output_times(specs_.output, specs_.loading());  // its case errors before anything is written
   RunRecord record_;
   std::unique_ptr<SceneModel> scene_;
   std::unique_ptr<material::Material> material_;

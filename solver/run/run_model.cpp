@@ -27,7 +27,7 @@ std::shared_ptr<contact::PenaltyContact> obstacle_contact(const RunSpecs& specs,
 // built first: its errors come before any of the pressure's.
 void add_mesh_scene_loads(const RunSpecs& specs, const TetMesh& mesh,
                           const contact::ContactParameters& contact_parameters, RunModel& model) {
-  const mechanics::LoadHistory history = mechanics::LoadHistory::from_spec(specs.loading);
+  const mechanics::LoadHistory history = mechanics::LoadHistory::from_spec(specs.loading());
   std::shared_ptr<contact::PenaltyContact> obstacle = obstacle_contact(specs, mesh, contact_parameters);
   if (!specs.pressure.groups.empty()) {
     auto pressure = std::make_shared<mechanics::SurfacePressure>(

@@ -13,13 +13,12 @@ namespace needlefem::run {
 RunSpecs parse_run_specs(const Case& c) {
   MeshSpec mesh = parse_mesh_spec(c);
   ContactSpec contact = parse_contact_spec(c);
-  LoadingSpec loading = parse_loading_spec(c, mesh.scene_kind);
+  const LoadingSpec loading = parse_loading_spec(c, mesh.scene_kind);
   RunSpecs specs{.mechanics = parse_mechanics_spec(c, mesh, loading, contact.mode),
                  .contact = std::move(contact),
                  .mesh = std::move(mesh),
                  .needle_deflection_check = parse_needle_deflection_check_spec(c),
                  .obstacle = parse_obstacle_spec(c),
-                 .loading = std::move(loading),
                  .pressure = parse_pressure_spec(c),
                  .integration = parse_integration_spec(c),
                  .thresholds = parse_thresholds_spec(c),
@@ -41,7 +40,7 @@ bool needle_in_contact(const RunSpecs& specs) {
 }
 
 contact::ContactParameters run_contact_parameters(const RunSpecs& specs, double reference_modulus) {
-  return contact::contact_parameters_from_spec(specs.contact, reference_modulus, mechanics::history_end(specs.loading),
+  return contact::contact_parameters_from_spec(specs.contact, reference_modulus, mechanics::history_end(specs.loading()),
                                                specs.mesh.refinement_level);
 }
 

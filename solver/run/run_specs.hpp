@@ -30,14 +30,13 @@ namespace needlefem::run {
 // The mesh spec alone parses scene.mesh_file, mesh.refinement_level and needle.edge_radius_um:
 // the mechanics (the file its errors name), the contact (its face sizes) and the needle in
 // contact take them from it; the run, the loading and the boundary take the scene's kind from it.
-// The boundary (in `mechanics`) holds a copy of `loading` and takes contact.mode from `contact`.
+// The boundary (in `mechanics`) holds the loading (loading()) and takes contact.mode from `contact`.
 struct RunSpecs {
   MechanicsSpec mechanics;
   ContactSpec contact;
   MeshSpec mesh;  // with the needle tip and the tissue cube a CAD tip's rules check it against
   NeedleDeflectionCheckSpec needle_deflection_check;
   ObstacleSpec obstacle;
-  LoadingSpec loading;
   PressureSpec pressure;
   IntegrationSpec integration;
   ThresholdsSpec thresholds;
@@ -48,6 +47,9 @@ struct RunSpecs {
   // The magnet and hinge of a compliant tip turning in tissue (head_turns_in_tissue), with the
   // schedule's rules checked: the hinge coupling's input (run/hinge_coupling.hpp).
   std::optional<steering::SteeringSetup> hinge_steering;
+
+  // How long and how the scene is loaded: the boundary's copy, the one the Dirichlet conditions use.
+  const LoadingSpec& loading() const { return mechanics.boundary.loading; }
 };
 
 // Throws the CaseErrors of the stages' parsers, the needle's motion's and the steering's last.

@@ -54,7 +54,6 @@ class TetAssembly {
 
   std::size_t elements() const { return geometry_.size(); }
   std::size_t dofs() const { return dofs_; }
-  int nodes_per_tet() const { return nodes_per_tet_; }
   const int* blocks(std::size_t e) const { return element_blocks_.data() + e * nodes_per_tet_; }
   const elements::ElementGeometry& geometry(std::size_t e) const { return geometry_[e]; }
   Mat matrix() const { return matrix_; }
