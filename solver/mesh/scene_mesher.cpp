@@ -180,11 +180,10 @@ void set_mesh_options(const MeshSpec& spec) {
 // some fillets misses its scaled-Jacobian target and leaves inverted tets (measured: 2 tets for
 // r = 0.83 mm, 20 deg, 0.25 mm). On a miss the mesh is generated again and optimised with one,
 // then two more element layers around each bad element (Mesh.HighOrderNumLayers, 6 by default):
-// that tip then meshes in 3.6 s with 7 layers instead of 7.3 s by the elastic smoothing that
-// follows if they miss too (HighOrderElastic on the fresh mesh, then HighOrder: the smoothing
-// fixes such tets only on a fresh mesh, and costs 5 s there). More layers are not always better:
-// 10 and 12 missed on that tip. Returns what was done; the element check of the model stage has
-// the last word.
+// on that tip 7 layers succeed at about half the cost of the elastic smoothing that follows if
+// they miss too (HighOrderElastic on the fresh mesh, then HighOrder: the smoothing fixes such
+// tets only on a fresh mesh; docs/speed.md). More layers are not always better: 10 and 12 missed
+// on that tip. Returns what was done; the element check of the model stage has the last word.
 std::string optimise_high_order() {
   constexpr int kMoreLayers = 2;
   double layers = 0.0;

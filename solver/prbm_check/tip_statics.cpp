@@ -44,10 +44,11 @@ struct CompliantTipStatics::Impl {
   std::vector<double> load_weight;  // w_a per node, Σ w_a = 1
   std::vector<std::size_t> head_elements;
   double head_volume = 0.0;
-  std::vector<double> u;  // current displacement, 3 per node
-  double force_n = 0.0;   // load of the current state
+  double force_n = 0.0;  // load of the current state
   double tip_length_m = 0.0;
-  Vec rhs = nullptr, step = nullptr, iterate = nullptr;
+  // u: the current displacement (3 per node), which SNES iterates on; saved: u before a load
+  // increment, restored when Newton fails on it.
+  Vec rhs = nullptr, step = nullptr, u = nullptr, saved = nullptr;
   KspSolver solver{PETSC_COMM_SELF};  // MUMPS LU (the options prefix nf_), also SNES's
   SNES snes = nullptr;                // Newton with full steps and the tests above (newton())
   // The load SNES's residual is evaluated at, and the time spent assembling in its current solve.
@@ -61,7 +62,8 @@ struct CompliantTipStatics::Impl {
         assembly(mesh.nodes_per_tet, mesh.tet_nodes, mesh.nodes, std::move(clamped_dofs)),
         rhs(assembly.create_vector()),
         step(assembly.create_vector()),
-        iterate(assembly.create_vector()) {
+        u(assembly.create_vector()),
+        saved(assembly.create_vector()) {
     petsc_check(SNESCreate(PETSC_COMM_SELF, &snes), "SNESCreate");
     petsc_check(SNESSetType(snes, SNESNEWTONLS), "SNESSetType");
     SNESLineSearch line_search = nullptr;
@@ -79,17 +81,18 @@ struct CompliantTipStatics::Impl {
     SNESDestroy(&snes);
     VecDestroy(&rhs);
     VecDestroy(&step);
-    VecDestroy(&iterate);
+    VecDestroy(&u);
+    VecDestroy(&saved);
   }
 
   std::size_t dofs() const { return 3 * mesh.nodes.size(); }
 
   // Rotation of the head: polar factor of its volume-averaged deformation gradient (tip_statics.hpp).
-  material::Mat3d head_rotation(const std::vector<double>& displacement) const {
+  material::Mat3d head_rotation(const double* displacement) const {
     material::Mat3d mean_f{};
     std::vector<double> element_u(kElementDofs);
     for (std::size_t e : head_elements) {
-      assembly.gather(e, displacement.data(), element_u.data());
+      assembly.gather(e, displacement, element_u.data());
       const auto& g = assembly.geometry(e);
       for (int q = 0; q < g.points; ++q) {
         const double* G = g.gradient_at(q);
@@ -106,17 +109,18 @@ struct CompliantTipStatics::Impl {
 
   static double bending_angle(const material::Mat3d& R) { return std::atan2(R(0, 2), R(2, 2)); }
 
-  // Residual r_int - f_ext at u (free dofs; clamped entries zero) into `out`, and the tangent of
-  // r_int (clamped rows and columns replaced by the identity) into matrix when with_tangent.
-  // Returns false if an element is inverted.
-  bool assemble(double force, LoadKind kind, bool with_tangent, Vec out) {
-    const material::Mat3d R = head_rotation(u);
+  // Residual r_int - f_ext at `displacement` (free dofs; clamped entries zero) into `out`, and the
+  // tangent of r_int (clamped rows and columns replaced by the identity) into matrix when
+  // with_tangent. Returns false if an element is inverted.
+  bool assemble(Vec displacement, double force, LoadKind kind, bool with_tangent, Vec out) {
+    const ReadArray x(displacement);
+    const material::Mat3d R = head_rotation(x.data());
     const std::array<double, 3> direction =
         kind == LoadKind::follower ? std::array<double, 3>{R(0, 0), R(1, 0), R(2, 0)} : std::array<double, 3>{1, 0, 0};
     WriteArray residual(out);
     for (std::size_t node = 0; node < mesh.nodes.size(); ++node)
       for (int i = 0; i < 3; ++i) residual.data()[3 * node + i] = -force * load_weight[node] * direction[i];
-    return assembly.add_elements(kernel, u, residual.data(), with_tangent);
+    return assembly.add_elements(kernel, x.data(), residual.data(), with_tangent);
   }
 
   // Norm of f_ext for the convergence test: F sqrt(Σ w_a²) (direction is a unit vector).
@@ -126,17 +130,13 @@ struct CompliantTipStatics::Impl {
     return std::abs(force) * std::sqrt(sum);
   }
 
-  // SNES's residual at x: u takes x's values, and the tangent is assembled with the residual (SNES
-  // asks for it at the same point next; snes_jacobian has nothing left to do). An inverted element
-  // is a domain error, which fails the solve.
+  // SNES's residual at x, and the tangent assembled with it (SNES asks for it at the same point
+  // next; snes_jacobian has nothing left to do). An inverted element is a domain error, which
+  // fails the solve.
   static PetscErrorCode snes_residual(SNES snes, Vec x, Vec f, void* context) {
     Impl& m = *static_cast<Impl*>(context);
     const auto start = WallClock::now();
-    {
-      const ReadArray values(x);
-      std::copy(values.data(), values.data() + m.u.size(), m.u.begin());
-    }
-    const bool valid = m.assemble(m.snes_force, m.snes_kind, true, f);
+    const bool valid = m.assemble(x, m.snes_force, m.snes_kind, true, f);
     m.snes_assembly_seconds += seconds_since(start);
     if (!valid) PetscCall(SNESSetFunctionDomainError(snes));
     return 0;
@@ -173,20 +173,13 @@ struct CompliantTipStatics::Impl {
     snes_force = force;
     snes_kind = kind;
     snes_assembly_seconds = 0.0;
-    {
-      WriteArray values(iterate);
-      std::copy(u.begin(), u.end(), values.data());
-    }
-    petsc_check(SNESSolve(snes, nullptr, iterate), "SNESSolve");
+    petsc_check(SNESSolve(snes, nullptr, u), "SNESSolve");
     linear_seconds += seconds_since(start) - snes_assembly_seconds;
     SNESConvergedReason reason = SNES_CONVERGED_ITERATING;
     PetscInt iterations = 0;
     petsc_check(SNESGetConvergedReason(snes, &reason), "SNESGetConvergedReason");
     petsc_check(SNESGetIterationNumber(snes, &iterations), "SNESGetIterationNumber");
-    if (reason < 0) return -1;
-    const ReadArray values(iterate);
-    std::copy(values.data(), values.data() + u.size(), u.begin());
-    return static_cast<int>(iterations);
+    return reason < 0 ? -1 : static_cast<int>(iterations);
   }
 };
 
@@ -232,7 +225,6 @@ CompliantTipStatics::CompliantTipStatics(const CompliantTip& tip, TetMesh mesh, 
     load_z += m.load_weight[a] * m.mesh.nodes[a][2];
   }
   load_lever_m_ = load_z - (tip.shaft + 0.5 * tip.neck_length);
-  m.u.assign(3 * nodes, 0.0);
 }
 
 CompliantTipStatics::~CompliantTipStatics() = default;
@@ -241,7 +233,7 @@ std::size_t CompliantTipStatics::dofs() const { return impl_->dofs(); }
 std::size_t CompliantTipStatics::elements() const { return impl_->mesh.tet_count(); }
 
 void CompliantTipStatics::reset() {
-  std::fill(impl_->u.begin(), impl_->u.end(), 0.0);
+  petsc_check(VecZeroEntries(impl_->u), "VecZeroEntries");
   impl_->force_n = 0.0;
 }
 
@@ -252,10 +244,10 @@ TipSolution CompliantTipStatics::solve(double force_n, LoadKind kind) {
   int halvings = 0;
   while (m.force_n != force_n) {
     const double target = std::abs(force_n - m.force_n) <= std::abs(increment) ? force_n : m.force_n + increment;
-    const std::vector<double> saved = m.u;
+    petsc_check(VecCopy(m.u, m.saved), "VecCopy");
     const int iterations = m.newton(target, kind, linear_seconds_);
     if (iterations < 0) {
-      m.u = saved;
+      petsc_check(VecCopy(m.saved, m.u), "VecCopy");
       if (++halvings > kMaxHalvings)
         throw std::runtime_error(fmt::format("compliant tip FEM: Newton fails at a load of {:.4g} N even in steps of {:.3g} N",
                                              target, increment));
@@ -266,19 +258,19 @@ TipSolution CompliantTipStatics::solve(double force_n, LoadKind kind) {
     ++solution.increments;
     m.force_n = target;
   }
-  solution.head_rotation_rad = Impl::bending_angle(m.head_rotation(m.u));
+  const ReadArray u(m.u);
+  solution.head_rotation_rad = Impl::bending_angle(m.head_rotation(u.data()));
   return solution;
 }
 
 double CompliantTipStatics::linear_rotation_per_newton() {
   Impl& m = *impl_;
-  const std::vector<double> saved = m.u;
-  std::fill(m.u.begin(), m.u.end(), 0.0);
   // At rest r_int = 0, so the assembled residual is -f_ext for 1 N: one solve gives u_lin per newton.
-  if (!m.assemble(1.0, LoadKind::dead, true, m.rhs) || !m.solver.factor(m.assembly.matrix()) ||
+  petsc_check(VecZeroEntries(m.step), "VecZeroEntries");
+  if (!m.assemble(m.step, 1.0, LoadKind::dead, true, m.rhs) || !m.solver.factor(m.assembly.matrix()) ||
       !m.solver.solve(m.rhs, m.step))
     throw std::runtime_error("compliant tip FEM: the linear stiffness matrix could not be factored");
-  std::vector<double> linear(m.u.size());
+  std::vector<double> linear(m.dofs());
   {
     ReadArray delta(m.step);
     for (std::size_t k = 0; k < linear.size(); ++k) linear[k] = -delta.data()[k];
@@ -289,17 +281,16 @@ double CompliantTipStatics::linear_rotation_per_newton() {
   for (double v : linear) largest = std::max(largest, std::abs(v));
   const double eps = 1e-7 * m.tip_length_m / std::max(largest, 1e-300);
   for (double& v : linear) v *= eps;
-  const double slope = Impl::bending_angle(m.head_rotation(linear)) / eps;
-  m.u = saved;
-  return slope;
+  return Impl::bending_angle(m.head_rotation(linear.data())) / eps;
 }
 
 double CompliantTipStatics::max_corotated_strain() const {
   const Impl& m = *impl_;
+  const ReadArray u(m.u);
   std::vector<double> element_u(kElementDofs);
   double largest = 0.0;
   for (std::size_t e = 0; e < m.mesh.tet_count(); ++e) {
-    m.assembly.gather(e, m.u.data(), element_u.data());
+    m.assembly.gather(e, u.data(), element_u.data());
     const auto result = m.kernel.evaluate(m.assembly.geometry(e), element_u.data(), nullptr, false);
     for (const auto& point : result.points) {
       material::Mat3d F{};

@@ -89,7 +89,7 @@ NeedleElasticity::NeedleElasticity(const TetMesh& mesh, double youngs_modulus_pa
   m.solution = m.assembly->create_vector();
   const material::Material steel("needle", material::CorotationalLinear{youngs_modulus_pa, poisson_ratio});
   const elements::TetElementKernel kernel(steel, elements::Formulation::displacement);
-  m.assembly->add_elements(kernel, std::vector<double>(m.assembly->dofs(), 0.0), nullptr, true);
+  m.assembly->add_elements(kernel, std::vector<double>(m.assembly->dofs(), 0.0).data(), nullptr, true);
   if (!m.solver.factor(m.assembly->matrix()))
     throw std::runtime_error("needle elasticity: factorising the needle's stiffness failed: " +
                              m.solver.last_failure());

@@ -72,6 +72,7 @@ void TetAssembly::create_matrix(std::size_t blocks) {
 Vec TetAssembly::create_vector() const {
   Vec v = nullptr;
   petsc_check(VecCreateSeq(PETSC_COMM_SELF, static_cast<PetscInt>(dofs_), &v), "VecCreateSeq");
+  petsc_check(VecZeroEntries(v), "VecZeroEntries");
   return v;
 }
 
@@ -145,12 +146,12 @@ bool TetAssembly::assemble_elements(const ElementEvaluation& evaluate, double* r
   return !inverted;
 }
 
-bool TetAssembly::add_elements(const elements::TetElementKernel& kernel, const std::vector<double>& u,
-                               double* residual, bool with_stiffness) {
+bool TetAssembly::add_elements(const elements::TetElementKernel& kernel, const double* u, double* residual,
+                               bool with_stiffness) {
   const bool valid = assemble_elements(
       [&](std::size_t e, elements::ElementResult& result) {
         std::array<double, elements::kMaxElementDofs> element_u{};
-        gather(e, u.data(), element_u.data());
+        gather(e, u, element_u.data());
         result = kernel.evaluate(geometry_[e], element_u.data(), nullptr, with_stiffness);
       },
       residual, with_stiffness);

@@ -58,7 +58,7 @@ class TetAssembly {
   const elements::ElementGeometry& geometry(std::size_t e) const { return geometry_[e]; }
   Mat matrix() const { return matrix_; }
 
-  // A new sequential vector of dofs() entries; the caller destroys it.
+  // A new sequential vector of dofs() zeros; the caller destroys it.
   Vec create_vector() const;
 
   // Element e's nodal values (3 per node) out of a global array of 3 per block.
@@ -83,8 +83,7 @@ class TetAssembly {
   // false, sets the matrix to Σ_e K_e(u), assembles it and clamps it (identity rows and columns).
   // Returns false at an inverted element: the residual is then partly summed and the matrix
   // unassembled.
-  bool add_elements(const elements::TetElementKernel& kernel, const std::vector<double>& u, double* residual,
-                    bool with_stiffness);
+  bool add_elements(const elements::TetElementKernel& kernel, const double* u, double* residual, bool with_stiffness);
 
   // Clamped entries of a residual (or load) array set to zero.
   void clamp_residual(double* residual) const;
