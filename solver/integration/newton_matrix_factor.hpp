@@ -1,7 +1,8 @@
 // How a Newton matrix J = dF/dy + c_j dF/dy' is factored and solved with: the one place that
 // chooses the factorisation, falls back to another where it fails, and holds the policies that
 // decide when to try which. The physics assembles J (a SeqAIJ matrix whose prescribed rows are
-// identity rows) and calls factor(), then solve() as often as the integrator asks.
+// identity rows); CondensedDaeSystem (condensed_dae_system.hpp) calls factor() with it at each
+// of IDA's setups, then solve() as often as the integrator asks.
 //
 // integration.linear_solver (NewtonMatrixOptions::method, the LinearSolver the case names)
 // selects ("cholmod", the first one's former name, still reads as "cholesky": case/schema.cpp)

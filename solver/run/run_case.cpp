@@ -162,7 +162,8 @@ struct RunRecord {
   double max_kinetic_to_elastic = 0.0;
   IdaCounters counters;
   mechanics::MechanicsSystem::Rejections rejections;
-  mechanics::MechanicsSystem::Factorisations factorisations;
+  CondensedDaeSystem::FactorFailures factor_failures;
+  NewtonMatrixFactor::Factorisations factorisations;
   IdaIntegrator::InitialRates initial_rates;  // the probe step giving y'(t0)
   long dofs = 0, displacement_dofs = 0;
   double mesh_s = 0.0, integration_s = 0.0, output_s = 0.0;
@@ -206,8 +207,8 @@ nlohmann::json summary_json(const Case& c, const RunSpecs& specs, const material
                  {"stale_matrix_aged", record.counters.stale_matrix_aged},
                  {"step_rejections", {{"inverted_element_residuals", record.rejections.inverted_residuals},
                                       {"inverted_element_jacobians", record.rejections.inverted_jacobians},
-                                      {"failed_factorisations", record.rejections.failed_factorisations},
-                                      {"failed_solves", record.rejections.failed_solves}}},
+                                      {"failed_factorisations", record.factor_failures.factorisations},
+                                      {"failed_solves", record.factor_failures.solves}}},
                  {"linear_solver", linear_solver_name(specs.integration.linear_solver)},
                  {"blas_kernel", openblas_kernel()},
                  {"factorisations", {{"cholesky", record.factorisations.cholesky},
@@ -414,16 +415,18 @@ class RunPass {
     last_report_ = WallClock::now();
     const IdaCounters k = integrator.counters();
     const auto& r = system.rejections();
+    const auto& f = system.factor_failures();
     fmt::print(options_.progress, "run:   t = {:.6g} s  step {:.3g} s  order {}  steps {}  Newton its {}  "
                "convergence failures {}  error-test failures {}  inverted elements {}+{}  failed solves {}\n",
                t_step, k.last_step, k.last_order, k.steps, k.newton_iterations, k.newton_convergence_failures,
-               k.error_test_failures, r.inverted_residuals, r.inverted_jacobians, r.failed_factorisations + r.failed_solves);
+               k.error_test_failures, r.inverted_residuals, r.inverted_jacobians, f.factorisations + f.solves);
     std::fflush(options_.progress);
   }
 
   void record_solver_counts(const IdaIntegrator& integrator, const mechanics::MechanicsSystem& system) {
     record_.counters = integrator.counters();
     record_.rejections = system.rejections();
+    record_.factor_failures = system.factor_failures();
     record_.factorisations = system.factorisations();
   }
 

@@ -45,9 +45,9 @@ void add_mesh_scene_loads(const RunSpecs& specs, const TetMesh& mesh,
 RunModel build_run_model(const RunSpecs& specs, const TetMesh& mesh, const material::Material& material,
                          std::shared_ptr<const contact::Needle> needle,
                          std::shared_ptr<const contact::HeadTilt> head_tilt) {
-  RunModel model{.system = mechanics::MechanicsSystem::from_spec(specs.mechanics, mesh,
-                                                                  newton_matrix_options_from_spec(specs.integration)),
+  RunModel model{.system = mechanics::MechanicsSystem::from_spec(specs.mechanics, mesh),
                  .needle = nullptr, .pressure = nullptr, .obstacle = nullptr};
+  model.system->use_newton_matrix_options(newton_matrix_options_from_spec(specs.integration));
   if (needle && head_tilt) needle = contact::needle_from_spec(run_needle_specs(specs), nullptr, std::move(head_tilt));
   const contact::ContactParameters contact_parameters =
       run_contact_parameters(specs, material.instantaneous_shear_modulus());

@@ -192,7 +192,7 @@ TEST(ContactJacobian, PreconditioningMatrixWithoutPressureCouplingIsSemidefinite
     jittered_face_state(mesh, contact, face, generator, x, v);
     const FaceTerms with_coupling = contact.face_terms(face, x.data(), v.data(), 0.5, 1.0, true);
     const FaceTerms without = contact.face_terms(face, x.data(), v.data(), 0.5, 1.0, true, {},
-                                                 mechanics::NewtonMatrix::symmetric_preconditioner);
+                                                 NewtonMatrix::symmetric_preconditioner);
     ASSERT_GT(with_coupling.contact_area, 0.0);
     EXPECT_EQ(with_coupling.slipping_area, with_coupling.contact_area);
     EXPECT_EQ(with_coupling.residual, without.residual);

@@ -58,8 +58,8 @@ double displacement_norm(const MechanicsSystem& system, Vec v) {
 Problem::Problem(const std::string& toml, const std::vector<std::string>& overrides)
     : input(Case::parse(toml, "test", overrides)),
       scene(meshed(input)),
-      system(MechanicsSystem::from_spec(mechanics_spec(input), scene.mesh,
-                                        newton_matrix_options_from_spec(parse_integration_spec(input)))) {
+      system(MechanicsSystem::from_spec(mechanics_spec(input), scene.mesh)) {
+  system->use_newton_matrix_options(newton_matrix_options_from_spec(parse_integration_spec(input)));
   VecCreateSeq(PETSC_COMM_SELF, system->local_size(), &y);
   VecDuplicate(y, &ydot);
   system->initial_state(0.0, y, ydot);

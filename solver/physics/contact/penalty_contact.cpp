@@ -241,11 +241,11 @@ PenaltyContact::PenaltyContact(const TetMesh& mesh, const std::string& surface,
 
 FaceTerms PenaltyContact::face_terms(std::size_t face, const double* x, const double* v, double t, double cj,
                                      bool with_jacobian, const Point3& moment_point,
-                                     mechanics::NewtonMatrix form, int body) const {
+                                     NewtonMatrix form, int body) const {
   const int m = nodes_per_face_, n = 3 * m;
   const double mu = parameters_.friction_coefficient;
   const double penalty = faces_[face].penalty;
-  const double coupling = form == mechanics::NewtonMatrix::exact ? 1.0 : 0.0;  // friction's pressure coupling
+  const double coupling = form == NewtonMatrix::exact ? 1.0 : 0.0;  // friction's pressure coupling
   FaceTerms out;
   out.residual.assign(n, 0.0);
   if (with_jacobian) out.jacobian.assign(static_cast<std::size_t>(n) * n, 0.0);
@@ -393,7 +393,7 @@ ContactResultant PenaltyContact::resultant(double t, const double* y, const doub
   for (std::size_t f = 0; f < faces_.size(); ++f) {
     gather(f, y, ydot, dofs, x.data(), v.data());
     const FaceTerms terms =
-        face_terms(f, x.data(), v.data(), t, 0.0, false, moment_point, mechanics::NewtonMatrix::exact, body);
+        face_terms(f, x.data(), v.data(), t, 0.0, false, moment_point, NewtonMatrix::exact, body);
     for (int i = 0; i < 3; ++i) {
       total.force_on_obstacle[i] -= terms.force_on_tissue[i];
       total.moment_on_obstacle[i] -= terms.moment_on_tissue[i];
@@ -416,7 +416,7 @@ void PenaltyContact::add_residual(double t, const double* y, const double* ydot,
 }
 
 void PenaltyContact::add_jacobian(double t, const double* y, const double* ydot, double cj,
-                                  const mechanics::DofMap& dofs, Mat jacobian, mechanics::NewtonMatrix form) const {
+                                  const mechanics::DofMap& dofs, Mat jacobian, NewtonMatrix form) const {
   std::vector<double> x(3 * nodes_per_face_), v(3 * nodes_per_face_);
   std::vector<PetscInt> blocks(nodes_per_face_);
   for (std::size_t f = 0; f < faces_.size(); ++f) {

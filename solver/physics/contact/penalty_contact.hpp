@@ -258,7 +258,7 @@ class PenaltyContact final : public mechanics::SurfaceLoad {
   // is on `body` of an articulated obstacle (ObstacleProjection::body; -1: every point).
   FaceTerms face_terms(std::size_t face, const double* x, const double* v, double t, double cj, bool with_jacobian,
                        const Point3& moment_point = {},
-                       mechanics::NewtonMatrix form = mechanics::NewtonMatrix::exact, int body = -1) const;
+                       NewtonMatrix form = NewtonMatrix::exact, int body = -1) const;
 
   // Of the points on `body` (-1: all).
   ContactResultant resultant(double t, const double* y, const double* ydot, const mechanics::DofMap& dofs,
@@ -269,7 +269,7 @@ class PenaltyContact final : public mechanics::SurfaceLoad {
   void add_residual(double t, const double* y, const double* ydot, const mechanics::DofMap& dofs,
                     double* f_u) const override;
   void add_jacobian(double t, const double* y, const double* ydot, double cj, const mechanics::DofMap& dofs,
-                    Mat jacobian, mechanics::NewtonMatrix form) const override;
+                    Mat jacobian, NewtonMatrix form) const override;
   // Return map: moves every point's anchor to what the accepted state (t, y) leaves it.
   // Augmented enforcement: starts each point's next multiplier ramp from the accepted penetration.
   void accept_step(double t, const double* y, const double* ydot, const mechanics::DofMap& dofs) override;

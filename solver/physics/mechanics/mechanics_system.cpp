@@ -19,16 +19,6 @@ void check(PetscErrorCode code, const char* what) {
   if (code != 0) throw std::runtime_error(fmt::format("PETSc error {} in {}", static_cast<int>(code), what));
 }
 
-// Runs a DaeSystem callback body: no exception may reach the integrator's C callbacks.
-template <class Body>
-DaeStatus guarded(Body&& body) noexcept {
-  try {
-    return body();
-  } catch (...) {
-    return DaeStatus::fatal;
-  }
-}
-
 
 // The tissue elements' nodes as blocks of the assembly (block = a node's first dof / 3) and the
 // reference position of each block's node.
@@ -50,8 +40,7 @@ std::vector<Point3> block_positions(const TetMesh& mesh, const DofMap& dofs) {
 }  // namespace
 
 MechanicsSystem::MechanicsSystem(const TetMesh& mesh, const material::Material& material,
-                                 elements::Formulation formulation, DirichletConditions conditions,
-                                 const NewtonMatrixOptions& solver_options)
+                                 elements::Formulation formulation, DirichletConditions conditions)
     : mesh_(mesh),
       dofs_(tissue_dof_map(mesh)),
       conditions_(std::move(conditions)),
@@ -61,21 +50,14 @@ MechanicsSystem::MechanicsSystem(const TetMesh& mesh, const material::Material& 
   viscous_per_element_ = static_cast<PetscInt>(points) * kernel_.prony_terms() * elements::kVoigt;
   prescribed_.assign(dofs_.dof_count, 0);
   for (const auto& d : conditions_.dofs) prescribed_[d.dof] = 1;
-  newton_factor_ = std::make_unique<NewtonMatrixFactor>(prescribed_, solver_options);
-  check(VecCreateSeq(PETSC_COMM_SELF, dofs_.dof_count, &rhs_), "VecCreateSeq");
-  check(VecDuplicate(rhs_, &solution_), "VecDuplicate");
 }
 
-MechanicsSystem::~MechanicsSystem() {
-  VecDestroy(&solution_);
-  VecDestroy(&rhs_);
-}
+MechanicsSystem::~MechanicsSystem() = default;
 
-std::unique_ptr<MechanicsSystem> MechanicsSystem::from_spec(const MechanicsSpec& spec, const TetMesh& mesh,
-                                                           const NewtonMatrixOptions& solver_options) {
+std::unique_ptr<MechanicsSystem> MechanicsSystem::from_spec(const MechanicsSpec& spec, const TetMesh& mesh) {
   const DofMap map = tissue_dof_map(mesh);
   return std::make_unique<MechanicsSystem>(mesh, material::material_from_spec(spec.material), spec.formulation,
-                                           scene_conditions(spec.boundary, mesh, map), solver_options);
+                                           scene_conditions(spec.boundary, mesh, map));
 }
 
 void MechanicsSystem::initial_state(double t0, Vec y, Vec ydot) {
@@ -150,19 +132,18 @@ DaeStatus MechanicsSystem::residual(double t, Vec y, Vec ydot, Vec F) {
   });
 }
 
-void MechanicsSystem::accept_step(double t, Vec y, Vec ydot) {
-  newton_factor_->step_accepted();
+void MechanicsSystem::step_accepted(double t, Vec y, Vec ydot) {
   if (surface_loads_.empty()) return;
   ReadArray state(y), rate(ydot);
   for (const auto& load : surface_loads_) load->accept_step(t, state.data(), rate.data(), dofs_);
 }
 
-DaeStatus MechanicsSystem::setup_jacobian(double t, Vec y, Vec ydot, double cj) {
-  return guarded([&] {
+DaeStatus MechanicsSystem::assemble_condensed(double t, Vec y, Vec ydot, double cj, NewtonMatrix form,
+                                              Mat& matrix) {
+  matrix = assembly_.matrix();
+  {
     ReadArray state(y), rate(ydot);
     const bool inverted = !assemble_condensed_matrix(state.data(), cj);
-    const NewtonMatrix form =
-        newton_factor_->wants_symmetric_matrix() ? NewtonMatrix::symmetric_preconditioner : NewtonMatrix::exact;
     if (!inverted)
       for (const auto& load : surface_loads_)
         load->add_jacobian(t, state.data(), rate.data(), cj, dofs_, assembly_.matrix(), form);
@@ -177,13 +158,8 @@ DaeStatus MechanicsSystem::setup_jacobian(double t, Vec y, Vec ydot, double cj) 
     for (const auto& d : conditions_.dofs) rows.push_back(d.dof);
     check(MatZeroRows(assembly_.matrix(), static_cast<PetscInt>(rows.size()), rows.data(), 1.0, nullptr, nullptr),
           "MatZeroRows");
-    if (!newton_factor_->factor(assembly_.matrix())) {
-      ++rejections_.failed_factorisations;
-      return DaeStatus::recoverable;
-    }
-    cj_ = cj;
     return DaeStatus::ok;
-  });
+  }
 }
 
 bool MechanicsSystem::assemble_condensed_matrix(const double* state, double cj) {
@@ -223,83 +199,87 @@ bool MechanicsSystem::newton_matrix_serves(double factored_cj, double cj) const 
   return std::abs(factored - needed) <= kServingTangentChange * needed;
 }
 
-DaeStatus MechanicsSystem::solve_jacobian(Vec b, Vec x) {
-  return guarded([&] {
-    const int n = mesh_.nodes_per_tet, terms = kernel_.prony_terms();
-    const auto& prony = kernel_.prony();
-    const PetscInt nu = displacement_dofs();
-    // J_QQ⁻¹ = 1 / (cj - ∂rate/∂Q) = 1 / (cj + 1/τ_i) and ∂rate/∂S⁰ = g_i / τ_i (PronyTerm).
-    std::vector<double> relaxation(terms), rate_gain(terms);
-    for (int i = 0; i < terms; ++i) {
-      relaxation[i] = 1.0 / (cj_ - prony[i].rate_slope());
-      rate_gain[i] = prony[i].rate_gain();
-    }
-    // Elements with unknowns condensed out of the factored matrix.
-    const std::size_t condensed_elements = terms || pressure_unknowns() ? assembly_.elements() : 0;
-    {
-      ReadArray in(b);
-      WriteArray rhs(rhs_);
-      double* r = rhs.data();
-      std::copy(in.data(), in.data() + nu, r);
-      assembly_.sum_over_elements(condensed_elements, r, nu, [&](std::size_t k, double* sums) {
-        std::array<double, elements::kMaxElementDofs> force{};
-        // -a_e b_p (the pressure row gives x_p = b_p + (U''/V_e) a_eᵀ x_u).
-        if (pressure_unknowns()) {
-          const double b_p = in.data()[pressure_offset() + static_cast<PetscInt>(k)];
-          for (int c = 0; c < 3 * n; ++c) force[c] = -pressure_gradient_[k][c] * b_p;
-        }
-        // Σ_q w_q B_qᵀ Σ_i b_Qi / (cj + 1/τ_i).
-        if (terms) {
-          std::array<elements::PointLanes, elements::kVoigt> source{};
-          for (int p = 0; p < assembly_.geometry(k).points; ++p) {
-            const double* b_q = in.data() + viscous_offset(k) + static_cast<PetscInt>(p) * terms * elements::kVoigt;
-            for (int m = 0; m < elements::kVoigt; ++m) {
-              double sum = 0.0;
-              for (int i = 0; i < terms; ++i) sum += relaxation[i] * b_q[i * elements::kVoigt + m];
-              source[m][p] = static_cast<float>(sum);
-            }
-          }
-          condensation_[k].add_stress_transpose(source, n, force.data());
-        }
-        const int* blocks = assembly_.blocks(k);
-        for (int a = 0; a < n; ++a)
-          for (int c = 0; c < 3; ++c) {
-            const int dof = 3 * blocks[a] + c;
-            if (!prescribed_[dof]) sums[dof] += force[3 * a + c];
-          }
-      });
-    }
-    if (!newton_factor_->solve(rhs_, solution_)) {
-      ++rejections_.failed_solves;
-      return DaeStatus::recoverable;
-    }
+MechanicsSystem::ViscousSolveFactors MechanicsSystem::viscous_solve_factors(double cj) const {
+  const auto& prony = kernel_.prony();
+  ViscousSolveFactors f{std::vector<double>(prony.size()), std::vector<double>(prony.size())};
+  // J_QQ⁻¹ = 1 / (cj - ∂rate/∂Q) = 1 / (cj + 1/τ_i) and ∂rate/∂S⁰ = g_i / τ_i (PronyTerm).
+  for (std::size_t i = 0; i < prony.size(); ++i) {
+    f.relaxation[i] = 1.0 / (cj - prony[i].rate_slope());
+    f.rate_gain[i] = prony[i].rate_gain();
+  }
+  return f;
+}
 
-    ReadArray in(b), x_u(solution_);
-    WriteArray out(x);
-    std::copy(x_u.data(), x_u.data() + nu, out.data());
-#pragma omp parallel for schedule(static)
-    for (std::size_t k = 0; k < condensed_elements; ++k) {
-      std::array<double, elements::kMaxElementDofs> u_e{};
-      assembly_.gather(k, x_u.data(), u_e.data());
-      if (pressure_unknowns()) {
-        const PetscInt row = pressure_offset() + static_cast<PetscInt>(k);
-        double volume_change = 0.0;  // a_eᵀ x_u
-        for (int c = 0; c < 3 * n; ++c) volume_change += pressure_gradient_[k][c] * u_e[c];
-        out.data()[row] = in.data()[row] + pressure_stiffness_[k] * volume_change;
-      }
-      if (!terms) continue;
-      const auto stress = condensation_[k].tangent_stress(u_e.data(), n);  // D⁰ B x_u, a lane per point
-      for (int p = 0; p < assembly_.geometry(k).points; ++p) {
-        const PetscInt offset = viscous_offset(k) + static_cast<PetscInt>(p) * terms * elements::kVoigt;
-        for (int i = 0; i < terms; ++i)
-          for (int m = 0; m < elements::kVoigt; ++m) {
-            const PetscInt row = offset + i * elements::kVoigt + m;
-            out.data()[row] = relaxation[i] * (in.data()[row] + rate_gain[i] * stress[m][p]);
-          }
-      }
+std::size_t MechanicsSystem::condensed_elements() const {
+  return kernel_.prony_terms() || pressure_unknowns() ? assembly_.elements() : 0;
+}
+
+void MechanicsSystem::condense(Vec b, double cj, Vec condensed_rhs) {
+  const int n = mesh_.nodes_per_tet, terms = kernel_.prony_terms();
+  const PetscInt nu = displacement_dofs();
+  const std::vector<double> relaxation = viscous_solve_factors(cj).relaxation;
+  ReadArray in(b);
+  WriteArray rhs(condensed_rhs);
+  double* r = rhs.data();
+  std::copy(in.data(), in.data() + nu, r);
+  assembly_.sum_over_elements(condensed_elements(), r, nu, [&](std::size_t k, double* sums) {
+    std::array<double, elements::kMaxElementDofs> force{};
+    // -a_e b_p (the pressure row gives x_p = b_p + (U''/V_e) a_eᵀ x_u).
+    if (pressure_unknowns()) {
+      const double b_p = in.data()[pressure_offset() + static_cast<PetscInt>(k)];
+      for (int c = 0; c < 3 * n; ++c) force[c] = -pressure_gradient_[k][c] * b_p;
     }
-    return DaeStatus::ok;
+    // Σ_q w_q B_qᵀ Σ_i b_Qi / (cj + 1/τ_i).
+    if (terms) {
+      std::array<elements::PointLanes, elements::kVoigt> source{};
+      for (int p = 0; p < assembly_.geometry(k).points; ++p) {
+        const double* b_q = in.data() + viscous_offset(k) + static_cast<PetscInt>(p) * terms * elements::kVoigt;
+        for (int m = 0; m < elements::kVoigt; ++m) {
+          double sum = 0.0;
+          for (int i = 0; i < terms; ++i) sum += relaxation[i] * b_q[i * elements::kVoigt + m];
+          source[m][p] = static_cast<float>(sum);
+        }
+      }
+      condensation_[k].add_stress_transpose(source, n, force.data());
+    }
+    const int* blocks = assembly_.blocks(k);
+    for (int a = 0; a < n; ++a)
+      for (int c = 0; c < 3; ++c) {
+        const int dof = 3 * blocks[a] + c;
+        if (!prescribed_[dof]) sums[dof] += force[3 * a + c];
+      }
   });
+}
+
+void MechanicsSystem::expand(Vec b, Vec condensed_solution, double cj, Vec x) {
+  const int n = mesh_.nodes_per_tet, terms = kernel_.prony_terms();
+  const PetscInt nu = displacement_dofs();
+  const ViscousSolveFactors factors = viscous_solve_factors(cj);
+  const std::size_t elements = condensed_elements();
+  ReadArray in(b), x_u(condensed_solution);
+  WriteArray out(x);
+  std::copy(x_u.data(), x_u.data() + nu, out.data());
+#pragma omp parallel for schedule(static)
+  for (std::size_t k = 0; k < elements; ++k) {
+    std::array<double, elements::kMaxElementDofs> u_e{};
+    assembly_.gather(k, x_u.data(), u_e.data());
+    if (pressure_unknowns()) {
+      const PetscInt row = pressure_offset() + static_cast<PetscInt>(k);
+      double volume_change = 0.0;  // a_eᵀ x_u
+      for (int c = 0; c < 3 * n; ++c) volume_change += pressure_gradient_[k][c] * u_e[c];
+      out.data()[row] = in.data()[row] + pressure_stiffness_[k] * volume_change;
+    }
+    if (!terms) continue;
+    const auto stress = condensation_[k].tangent_stress(u_e.data(), n);  // D⁰ B x_u, a lane per point
+    for (int p = 0; p < assembly_.geometry(k).points; ++p) {
+      const PetscInt offset = viscous_offset(k) + static_cast<PetscInt>(p) * terms * elements::kVoigt;
+      for (int i = 0; i < terms; ++i)
+        for (int m = 0; m < elements::kVoigt; ++m) {
+          const PetscInt row = offset + i * elements::kVoigt + m;
+          out.data()[row] = factors.relaxation[i] * (in.data()[row] + factors.rate_gain[i] * stress[m][p]);
+        }
+    }
+  }
 }
 
 MechanicsSystem::Resultants MechanicsSystem::resultants(Vec y, const std::vector<std::string>& surfaces) const {

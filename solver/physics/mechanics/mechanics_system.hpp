@@ -30,14 +30,13 @@
 //     = K with D⁰ scaled by 1 - Σ_i g_i/(1 + c_j τ_i) and the volumetric part
 //       p_e ∂²v_e/∂u² + (U''/V_e) a_e a_eᵀ (tet_element.hpp, with the state's p_e),
 // assembles K̂ into a PETSc AIJ matrix of block size 3 (prescribed rows replaced by identity
-// rows) and hands it to integration/NewtonMatrixFactor, which chooses how to factor it
-// (integration.linear_solver and its fallbacks: newton_matrix_factor.hpp). solve_jacobian
-// back-substitutes:
+// rows); the integration stage factors it (CondensedDaeSystem, condensed_dae_system.hpp: how,
+// by integration.linear_solver and its fallbacks, newton_matrix_factor.hpp). A solve condenses
+// the right-hand side onto u, and expands the solution of K̂ back:
 //   K̂ x_u = b_u + Σ_q w_q B_qᵀ Σ_i b_Qi / (c_j + 1/τ_i) - Σ_e a_e b_p,e     (free rows only),
 //   x_Qi = (b_Qi + (g_i/τ_i) D⁰_q B_q x_u) / (c_j + 1/τ_i),
 //   x_p,e = b_p,e + (U''/V_e) a_eᵀ x_u.
-// A non-positive det F anywhere gives DaeStatus::recoverable (IDA cuts the step); so does a
-// failed factorisation. One rank: PETSc objects live on PETSC_COMM_SELF; the element loops of residuals,
+// A non-positive det F anywhere gives DaeStatus::recoverable (IDA cuts the step). One rank: PETSc objects live on PETSC_COMM_SELF; the element loops of residuals,
 // Newton matrices and the condensation run on the OpenMP threads (OMP_NUM_THREADS).
 #pragma once
 
@@ -45,11 +44,9 @@
 #include <string>
 #include <vector>
 
-#include <petscksp.h>
 
 #include "case/specs/mechanics_spec.hpp"
-#include "integration/dae_system.hpp"
-#include "integration/newton_matrix_factor.hpp"
+#include "integration/condensed_dae_system.hpp"
 #include "model/tet_mesh.hpp"
 #include "physics/elements/tet_element.hpp"
 #include "physics/material/material.hpp"
@@ -60,20 +57,18 @@
 
 namespace needlefem::mechanics {
 
-class MechanicsSystem final : public DaeSystem {
+class MechanicsSystem final : public CondensedDaeSystem {
  public:
   // `mesh` must outlive the system. PETSc must be initialised. Throws std::runtime_error on
   // PETSc failures and for inverted reference elements.
   MechanicsSystem(const TetMesh& mesh, const material::Material& material, elements::Formulation formulation,
-                  DirichletConditions conditions, const NewtonMatrixOptions& solver_options = {});
+                  DirichletConditions conditions);
   ~MechanicsSystem() override;
   MechanicsSystem(const MechanicsSystem&) = delete;
   MechanicsSystem& operator=(const MechanicsSystem&) = delete;
 
-  // The case's material, element formulation and conditions of its scene (parse_mechanics_spec);
-  // the linear solver's options from the caller (newton_matrix_options_from_spec).
-  static std::unique_ptr<MechanicsSystem> from_spec(const MechanicsSpec& spec, const TetMesh& mesh,
-                                                    const NewtonMatrixOptions& solver_options);
+  // The case's material, element formulation and conditions of its scene (parse_mechanics_spec).
+  static std::unique_ptr<MechanicsSystem> from_spec(const MechanicsSpec& spec, const TetMesh& mesh);
 
   // --- DaeSystem -------------------------------------------------------------------------
   PetscInt local_size() const override { return displacement_dofs() + viscous_dofs() + pressure_dofs(); }
@@ -87,25 +82,17 @@ class MechanicsSystem final : public DaeSystem {
   // forces steps far smaller than the loading needs while Q is still near zero.
   void absolute_tolerances(Vec atol, double displacement_m, double viscous_stress_pa, double pressure_pa) const;
   DaeStatus residual(double t, Vec y, Vec ydot, Vec F) override;
-  DaeStatus setup_jacobian(double t, Vec y, Vec ydot, double cj) override;
-  void accept_step(double t, Vec y, Vec ydot) override;
-  DaeStatus solve_jacobian(Vec b, Vec x) override;
-  long linear_iterations() const override { return newton_factor_->iterations(); }
   // With no rate-dependent surface load, c_j enters the Newton matrix only through the condensed
   // Prony terms, 1 - Σ g_i/(1 + c_j τ_i) (material::condensed_fraction): it serves if that factor changes by
   // less than 1e-3.
   bool newton_matrix_serves(double factored_cj, double cj) const override;
-  // Why callbacks asked IDA for a smaller step (DaeStatus::recoverable), counted.
+  // Why callbacks asked IDA for a smaller step (DaeStatus::recoverable), counted; the failed
+  // factorisations and solves: CondensedDaeSystem::factor_failures().
   struct Rejections {
-    long inverted_residuals = 0;     // an element with det F <= 0 in a residual evaluation
-    long inverted_jacobians = 0;     // ... in a Newton-matrix setup
-    long failed_factorisations = 0;  // the linear solver could not factor the Newton matrix
-    long failed_solves = 0;          // ... or solve with it
+    long inverted_residuals = 0;  // an element with det F <= 0 in a residual evaluation
+    long inverted_jacobians = 0;  // ... in a Newton-matrix setup
   };
   const Rejections& rejections() const { return rejections_; }
-  // How the Newton matrices were factored (NewtonMatrixFactor::Factorisations).
-  using Factorisations = NewtonMatrixFactor::Factorisations;
-  Factorisations factorisations() const { return newton_factor_->factorisations(); }
 
   // Adds a surface's terms (contact, tractions; surface_load.hpp) to residual and Jacobian.
   void add_surface_load(std::shared_ptr<SurfaceLoad> load) { surface_loads_.push_back(std::move(load)); }
@@ -151,8 +138,21 @@ class MechanicsSystem final : public DaeSystem {
   // Internal force f_int (all displacement dofs) and, when rates are given, the viscous rows
   // F_Q. Returns false for an inverted element.
   bool assemble_internal(const double* y, const double* ydot, double* f_u, double* f_q, double* energy) const;
+  // --- CondensedDaeSystem: K̂ and the condensation onto u ------------------------------------
+  std::vector<char> condensed_prescribed() const override { return prescribed_; }
+  DaeStatus assemble_condensed(double t, Vec y, Vec ydot, double cj, NewtonMatrix form, Mat& matrix) override;
+  void condense(Vec b, double cj, Vec condensed_rhs) override;
+  void expand(Vec b, Vec condensed_solution, double cj, Vec x) override;
+  void step_accepted(double t, Vec y, Vec ydot) override;
+  // Per Prony term i at c_j: J_QQ⁻¹ = 1 / (c_j - ∂rate/∂Q) and ∂rate/∂S⁰ (PronyTerm).
+  struct ViscousSolveFactors {
+    std::vector<double> relaxation, rate_gain;
+  };
+  ViscousSolveFactors viscous_solve_factors(double cj) const;
+  // Elements with unknowns condensed out of K̂ (all with Prony terms or pressures, else none).
+  std::size_t condensed_elements() const;
   // K̂ at the state y and c_j into the matrix's values, before surface loads and prescribed rows;
-  // keeps the condensation's data for solve_jacobian. Returns false for an inverted element.
+  // keeps the condensation's data for condense and expand. Returns false for an inverted element.
   bool assemble_condensed_matrix(const double* y, double cj);
   // The mixed element keeps its pressures in the state.
   bool pressure_unknowns() const { return kernel_.formulation() == elements::Formulation::mean_dilatation; }
@@ -165,21 +165,15 @@ class MechanicsSystem final : public DaeSystem {
   // the Newton matrix's fixed pattern and the threaded element loops.
   TetAssembly assembly_;
   PetscInt viscous_per_element_ = 0;
-  // Mixed element: a_e and U''/V_e of each element at the last setup, for solve_jacobian.
+  // Mixed element: a_e and U''/V_e of each element at the last setup, for condense and expand.
   std::vector<std::array<double, elements::kMaxElementDofs>> pressure_gradient_;
   std::vector<double> pressure_stiffness_;
   std::vector<char> prescribed_;  // per displacement dof
   std::vector<std::shared_ptr<SurfaceLoad>> surface_loads_;
   Rejections rejections_;
 
-  // Newton matrix data kept from setup_jacobian for solve_jacobian.
-  double cj_ = 0.0;
-  std::vector<elements::CondensationElement> condensation_;  // per element (viscous only)
-  // Factors the assembly's matrix at each setup and solves with it; which matrix form a setup assembles
-  // (NewtonMatrix::exact, or symmetric_preconditioner: positive definite, cheap to factor and
-  // solve) is its wants_symmetric_matrix().
-  std::unique_ptr<NewtonMatrixFactor> newton_factor_;
-  Vec rhs_ = nullptr, solution_ = nullptr;
+  // The condensation of the last assembly, for condense and expand (viscous only).
+  std::vector<elements::CondensationElement> condensation_;
 };
 
 }  // namespace needlefem::mechanics

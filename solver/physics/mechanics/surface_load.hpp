@@ -9,15 +9,10 @@
 
 #include <petscmat.h>
 
+#include "integration/condensed_dae_system.hpp"
 #include "physics/mechanics/dof_map.hpp"
 
 namespace needlefem::mechanics {
-
-// What a Newton matrix is for: the exact ∂F/∂y + c_j ∂F/∂y' (modified Newton; the Krylov
-// Newton's preconditioner by default), or only the preconditioner of GMRES on the exact
-// Jacobian's action, where a load may leave out terms that spoil the positive definiteness of
-// the matrix's symmetric part (penalty_contact.hpp: friction's pressure coupling).
-enum class NewtonMatrix { exact, symmetric_preconditioner };
 
 class SurfaceLoad {
  public:
