@@ -25,7 +25,7 @@
 //   J_uu = K (tangent at fixed Q),   J_uQ = -w_q B_qᵀ,
 //   J_Qu = -(g_i/τ_i) D⁰_q B_q,      J_QQ = (c_j + 1/τ_i) I   (diagonal: Q_i is local),
 //   J_up = a_e,   J_pu = -(U''/V_e) a_eᵀ,   J_pp = 1            (per element).
-// setup_jacobian condenses Q and p element by element (Schur complement):
+// The Newton-matrix setup condenses Q and p element by element (Schur complement):
 //   K̂ = J_uu - Σ J_uQ J_QQ⁻¹ J_Qu - Σ J_up J_pp⁻¹ J_pu
 //     = K with D⁰ scaled by 1 - Σ_i g_i/(1 + c_j τ_i) and the volumetric part
 //       p_e ∂²v_e/∂u² + (U''/V_e) a_e a_eᵀ (tet_element.hpp, with the state's p_e),
