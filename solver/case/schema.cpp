@@ -9,12 +9,13 @@ namespace needlefem {
 
 namespace {
 
-KeySpec make(std::string key, KeyType type, KeyDefault fallback, std::string help) {
+KeySpec make(std::string key, KeyType type, KeyDefault fallback, std::string help, bool input_file = false) {
   KeySpec s;
   s.key = std::move(key);
   s.type = type;
   s.fallback = std::move(fallback);
   s.help = std::move(help);
+  s.input_file = input_file;
   return s;
 }
 
@@ -39,6 +40,8 @@ KeySpec flag(std::string key, bool fallback, std::string help) {
 KeySpec text(std::string key, std::string fallback, std::string help) {
   return make(std::move(key), KeyType::Text, std::move(fallback), std::move(help));
 }
+// A file the run reads, relative to the case file (a sweep rebases it in its points' case files).
+KeySpec input_file(std::string key, std::string help) { return make(std::move(key), KeyType::Text, "", help, true); }
 KeySpec choice(std::string key, std::string fallback, std::vector<std::string> choices, std::string help) {
   KeySpec s = make(std::move(key), KeyType::Choice, std::move(fallback), std::move(help));
   s.choices = std::move(choices);
@@ -81,7 +84,7 @@ std::vector<KeySpec> build_schema() {
              "block: a box with per-face conditions for homogeneous verification problems; "
              "mesh: the user's gmsh mesh (scene.mesh_file) with conditions on its named surface groups "
              "([groups], [displacement], [pressure], [obstacle])"),
-      text("scene.mesh_file", "",
+      input_file("scene.mesh_file",
            "brain-tip: a user-supplied gmsh .msh (millimetres; tets of the order mesh.order gives) with the same "
            "physical names, used instead of generating one. mesh: required; a .msh (millimetres, tets of order "
            "mesh.order) or a gmsh .geo that needlefem meshes at mesh.order with its sizes halved per "
@@ -142,7 +145,7 @@ std::vector<KeySpec> build_schema() {
              "bevel: cylinder with a bevel plane and a side-profile tip fillet (paper 001); "
              "compliant: magnetised head, thin neck (hinge) and shaft (paper 000); "
              "cad: the tip of needle.cad_file (the cavity carved from it, the contact needle its surface)"),
-      text("needle.cad_file", "",
+      input_file("needle.cad_file",
            "needle.kind = \"cad\": the tip as one closed solid in a STEP (.step, .stp), BREP (.brep) or gmsh "
            ".geo (OpenCASCADE) file, in millimetres, axis along +z, tip towards +z, a planar rear face on z = 0 "
            "(flush with the entry face), inside the core. Relative to the case file. Tip families: meshes/tips/"),
@@ -475,10 +478,10 @@ std::vector<KeySpec> build_schema() {
 
       // --- insertion-force trajectory (insertion_force/, `needlefem force-trajectory`, paper 000 Eq. 3.2)
       // Needle radius from needle.radius_mm, insertion speed from motion.insertion_speed_mm_per_s.
-      text("insertion_force.energy_history", "",
+      input_file("insertion_force.energy_history",
            "history.csv of a `needlefem run` of the brain-tip scene (elastic_energy_j against time_s, with its "
            "summary.json beside it for the run's speed): the deformation stage's U(x); relative to the case file"),
-      text("insertion_force.energy_case", "",
+      input_file("insertion_force.energy_case",
            "The case whose `needlefem run` writes energy_history (relative to the case file): while energy_history "
            "does not exist, force-trajectory stops naming the command that makes it"),
       real("insertion_force.extrapolation_warn_factor", 2.0, 1.0, 1e6,

@@ -27,6 +27,7 @@ struct KeySpec {
   // KeyType::Choice: former names still accepted, each with the choice it now reads as.
   std::vector<std::pair<std::string, std::string>> aliases;
   std::size_t list_length = 0;       // for KeyType::RealList; 0 = any non-empty length
+  bool input_file = false;           // KeyType::Text: a file the run reads, relative to the case file
 };
 
 const std::vector<KeySpec>& case_schema();

@@ -13,6 +13,7 @@ CondensedDaeSystem::~CondensedDaeSystem() {
 void CondensedDaeSystem::use_newton_matrix_options(const NewtonMatrixOptions& options) {
   options_ = options;
   factor_.reset();
+  factor();  // made here, so that bad solver options stop the run with their own error
 }
 
 NewtonMatrixFactor& CondensedDaeSystem::factor() {

@@ -44,7 +44,8 @@ class CondensedDaeSystem : public DaeSystem {
   CondensedDaeSystem& operator=(const CondensedDaeSystem&) = delete;
 
   // How the condensed matrix is factored (newton_matrix_options_from_spec: integration.*);
-  // NewtonMatrixOptions{} (MUMPS LU) if never called. Call before the first setup.
+  // NewtonMatrixOptions{} (MUMPS LU) if never called. Makes the factor, so PETSc's errors for
+  // bad solver options (-nf_ksp_type ...) come from here; call it before the first setup.
   void use_newton_matrix_options(const NewtonMatrixOptions& options);
 
   DaeStatus setup_jacobian(double t, Vec y, Vec ydot, double cj) final;

@@ -283,15 +283,19 @@ std::vector<RuleViolation> scene_violations(const MeshSpec& mesh) {
   return brain_tip_scene_violations(mesh.tissue, needle_tip_from_spec(mesh.needle_tip));
 }
 
-// scene.mesh_file made absolute: relative to the file that named it.
-void absolute_mesh_file(FlatTable& flat, const fs::path& relative_to) {
-  if (const auto* file = flat.get_as<std::string>("scene.mesh_file")) {
+// The files a run reads (scene.mesh_file, needle.cad_file, ...: KeySpec::input_file) made absolute,
+// relative to the file that named them: a point's case.toml lives in the sweep's output folder.
+void absolute_input_files(FlatTable& flat, const fs::path& relative_to) {
+  for (const KeySpec& spec : case_schema()) {
+    if (!spec.input_file) continue;
+    const auto* file = flat.get_as<std::string>(spec.key);
+    if (!file) continue;
     const fs::path path(file->get());
-    if (!path.empty() && path.is_relative()) flat.insert_or_assign("scene.mesh_file", (relative_to / path).string());
+    if (!path.empty() && path.is_relative()) flat.insert_or_assign(spec.key, (relative_to / path).string());
   }
 }
 
-// The base case's keys, flattened, with scene.mesh_file made absolute.
+// The base case's keys, flattened, with the files it names made absolute.
 FlatTable base_case_table(const fs::path& base_case) {
   FlatTable flat;
   try {
@@ -300,7 +304,7 @@ FlatTable base_case_table(const fs::path& base_case) {
     throw CaseError(fmt::format("{}:{}:{}: TOML syntax error: {}", base_case.string(), e.source().begin.line,
                                 e.source().begin.column, e.description()));
   }
-  absolute_mesh_file(flat, base_case.parent_path());
+  absolute_input_files(flat, base_case.parent_path());
   return flat;
 }
 
@@ -367,7 +371,7 @@ std::vector<Grid> read_grids(const SweepFile& file, const toml::table& root) {
 }
 
 // What every point of a sweep starts from: the base case's keys, the sweep's [set] over them,
-// the sweep's folder (mesh files are relative to it) and the header of each point's case.toml.
+// the sweep's folder (the files it names are relative to it) and the header of each point's case.toml.
 struct PointBase {
   FlatTable base;
   FlatTable fixed;
@@ -391,7 +395,7 @@ void add_grid_points(const SweepFile& file, const Grid& g, const PointBase& star
       rest /= axis->size();
       for (std::size_t k = 0; k < axis->keys.size(); ++k) assigned.insert_or_assign(axis->keys[k], axis->values[k][i]);
     }
-    absolute_mesh_file(assigned, start.sweep_dir);
+    absolute_input_files(assigned, start.sweep_dir);
     overlay(point, assigned);
 
     nlohmann::json values;
@@ -436,7 +440,7 @@ SweepPlan load_sweep(const fs::path& sweep_file) {
   const FlatTable base_flat = base_case_table(plan.base_case);
 
   FlatTable fixed = file.flatten(root.get("set"), "set");
-  absolute_mesh_file(fixed, sweep_dir);
+  absolute_input_files(fixed, sweep_dir);
 
   const std::vector<Grid> grids = read_grids(file, root);
 
@@ -470,7 +474,7 @@ SweepPlan plan_axis(const fs::path& base_case, const std::vector<std::string>& s
     insert_json(set_layer, given, resolved.at(nlohmann::json::json_pointer(pointer)));
   }
   overlay(flat, set_layer);
-  absolute_mesh_file(flat, plan.base_case.parent_path());  // a --set file is relative to the case, as Case::path reads it
+  absolute_input_files(flat, plan.base_case.parent_path());  // a --set file is relative to the case, as Case::path reads it
   std::string overrides;
   for (const auto& assignment : set) overrides += fmt::format(", --set {}", assignment);
   for (const auto& axis_point : points) {

@@ -15,8 +15,8 @@
 //   linked = { ... }
 // The top-level [axes]/[linked] form the grid "main" (when given); the sweep is the union of
 // its grids. Keys are case keys (`needlefem keys`), quoted ("needle.radius_mm") or as TOML
-// dotted keys; any scalar key may be swept. scene.mesh_file values are relative to the file
-// that gives them.
+// dotted keys; any scalar key may be swept. Files a run reads (scene.mesh_file, needle.cad_file,
+// ...) are relative to the file that gives them: the base case or the sweep file.
 //
 // Each point is base + [set] + its grid's set + its axis values, merged as TOML tables (so
 // the point's case gives exactly the keys a hand-written case would) and validated by the

@@ -13,6 +13,9 @@
   bad      runs tests/sweep/bad_points.toml: impossible points listed on the terminal with their
            rule and in the table as "impossible" with the rule; the run that fails recorded as
            "failed" with its error; the sweep exits 0.
+  input-files runs tests/sweep/cad_base_case.toml, whose base case names its CAD tip relative to
+           itself: the point's run finds the file (it fails on the narrow core, naming the
+           core, not on a missing file).
   list     `sweep --list` of the paper-001 sweep files: the plan is made, point folder names are
            short and match their values in sweep.csv, the quick sweep's coarse mesh is warned of
            (terminal, coarse_mesh column, safety map title) and the full grid's is not.
@@ -196,13 +199,19 @@ def resume(args):
           "a point whose summary names a choice by its former name is not run again")
 
 
-def bad(args):
+def completed_sweep(args, what):
+    """Runs args.sweep into a fresh args.out to its end; checks that it exits 0."""
     out = pathlib.Path(args.out)
     shutil.rmtree(out, ignore_errors=True)
     process = sweep(args.exe, args.sweep, out)
     log, _ = process.communicate()
     print(log)
-    check(process.returncode == 0, "a sweep with impossible and failed points exits 0")
+    check(process.returncode == 0, f"{what} exits 0")
+    return out, log
+
+
+def bad(args):
+    out, log = completed_sweep(args, "a sweep with impossible and failed points")
     rows = {r["grids"]: r for r in read_csv(out)}
     expected_rules = {"impossible": ["fillet-exceeds-radius", "fillet-fits-bevel"], "wide": ["core-contains-needle"],
                       "out-of-range": ["case"]}
@@ -216,6 +225,13 @@ def bad(args):
     failed = rows["missing-mesh"]
     check(failed["status"] == "failed" and "no_such_mesh.msh' not found" in failed["error"],
           f"the failing run is recorded with its error: {failed['error']}")
+
+
+def input_files(args):
+    out, _ = completed_sweep(args, "the sweep")
+    (row,) = read_csv(out)
+    check(row["status"] == "failed" and "does not fit the core" in row["error"] and "no such file" not in row["error"],
+          f"the point's run read the base case's CAD file and stopped at the core: {row['error']}")
 
 
 def png_ok(path):
@@ -482,7 +498,7 @@ def listed(args):
 
 def main():
     parser = argparse.ArgumentParser()
-    parser.add_argument("mode", choices=["resume", "bad", "figures", "steering", "full-grid", "list"])
+    parser.add_argument("mode", choices=["resume", "bad", "input-files", "figures", "steering", "full-grid", "list"])
     parser.add_argument("--exe")
     parser.add_argument("--sweep")
     parser.add_argument("--out", required=True)
@@ -490,7 +506,7 @@ def main():
     parser.add_argument("--figures")
     parser.add_argument("--render")
     args = parser.parse_args()
-    {"resume": resume, "bad": bad, "figures": figures, "steering": steering,
+    {"resume": resume, "bad": bad, "input-files": input_files, "figures": figures, "steering": steering,
      "full-grid": full_grid_figures, "list": listed}[args.mode](args)
     if failures:
         print(f"{len(failures)} check(s) failed")
