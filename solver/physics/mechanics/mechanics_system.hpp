@@ -36,14 +36,14 @@
 //   K̂ x_u = b_u + Σ_q w_q B_qᵀ Σ_i b_Qi / (c_j + 1/τ_i) - Σ_e a_e b_p,e     (free rows only),
 //   x_Qi = (b_Qi + (g_i/τ_i) D⁰_q B_q x_u) / (c_j + 1/τ_i),
 //   x_p,e = b_p,e + (U''/V_e) a_eᵀ x_u.
-// A non-positive det F anywhere gives DaeStatus::recoverable (IDA cuts the step). One rank: PETSc objects live on PETSC_COMM_SELF; the element loops of residuals,
-// Newton matrices and the condensation run on the OpenMP threads (OMP_NUM_THREADS).
+// A non-positive det F anywhere gives DaeStatus::recoverable (IDA cuts the step). One rank:
+// PETSc objects live on PETSC_COMM_SELF; the element loops of residuals, Newton matrices and
+// the condensation run on the OpenMP threads (OMP_NUM_THREADS).
 #pragma once
 
 #include <memory>
 #include <string>
 #include <vector>
-
 
 #include "case/specs/mechanics_spec.hpp"
 #include "integration/condensed_dae_system.hpp"
