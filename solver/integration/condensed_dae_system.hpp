@@ -26,16 +26,6 @@ namespace needlefem {
 // of the matrix's symmetric part (penalty_contact.hpp: friction's pressure coupling).
 enum class NewtonMatrix { exact, symmetric_preconditioner };
 
-// Runs a DaeSystem callback body: no exception may reach the integrator's C callbacks.
-template <class Body>
-DaeStatus guarded(Body&& body) noexcept {
-  try {
-    return body();
-  } catch (...) {
-    return DaeStatus::fatal;
-  }
-}
-
 class CondensedDaeSystem : public DaeSystem {
  public:
   CondensedDaeSystem() = default;

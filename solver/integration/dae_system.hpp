@@ -13,6 +13,16 @@ namespace needlefem {
 
 enum class DaeStatus { ok, recoverable, fatal };
 
+// Runs a callback body so that no exception crosses into SUNDIALS: an exception becomes fatal.
+template <class Body>
+DaeStatus guarded(Body&& body) noexcept {
+  try {
+    return body();
+  } catch (...) {
+    return DaeStatus::fatal;
+  }
+}
+
 class DaeSystem {
  public:
   virtual ~DaeSystem() = default;
