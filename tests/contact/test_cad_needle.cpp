@@ -1,7 +1,9 @@
 // The triangulated-surface needle (physics/contact/triangle_surface.hpp, cad_needle.hpp) against
 // independent references: distances to a sphere, a box and a cylinder in closed form, the grid
-// search against brute force, the edge rounding against the distance to a rounded box, and the
-// normal's continuity across a rounded edge.
+// search against brute force, the edge rounding against the distance to a rounded box, the
+// normal's continuity across a rounded edge, and the gap spline (gap_spline.hpp): a cubic
+// reproduced exactly, a sphere's distance, the shaft as a prism, and a curvature that does not see
+// the facets.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,6 +11,7 @@
 #include <random>
 
 #include "physics/contact/cad_needle.hpp"
+#include "physics/contact/gap_spline.hpp"
 #include "physics/contact/triangle_surface.hpp"
 
 namespace needlefem::contact {
@@ -226,6 +229,102 @@ TEST(CadNeedleShape, NormalIsContinuousAcrossARoundedEdge) {
   const double before = sharp.project({a - 0.1, 0.1, L - 0.1 - 1e-6}).normal[0];
   const double after = sharp.project({a - 0.1 - 1e-6, 0.1, L - 0.1}).normal[0];
   EXPECT_GT(std::abs(before - after), 0.9);
+}
+
+// The quasi-interpolant reproduces cubics: a cubic with a gradient below 1 (so that the coarse pass
+// may skip nodes by the Lipschitz bound) comes back with its value, gradient and Hessian to
+// rounding wherever the spline answers.
+TEST(GapSpline, ReproducesACubicExactly) {
+  auto p = [](const Point3& x) {
+    return 0.3 * (x[0] - 0.5) + 0.02 * std::pow(x[1] - 0.5, 3) + 0.01 * x[0] * x[1] * x[2] - 0.02 * x[2] * x[2];
+  };
+  const double h = 0.1;
+  const GapSpline spline({0, 0, 0}, {1, 1, 1}, h, 0.0, false, p);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int answered = 0;
+  for (int q = 0; q < 500; ++q) {
+    const Point3 x{u(rng), u(rng), u(rng)};
+    const auto s = spline.project(x);
+    if (!s) {
+      EXPECT_GT(std::abs(p(x)), GapSpline::kTrustCells * h * 0.99);  // declined only outside the band
+      continue;
+    }
+    ++answered;
+    const Point3 gradient{0.3 + 0.01 * x[1] * x[2], 0.06 * std::pow(x[1] - 0.5, 2) + 0.01 * x[0] * x[2],
+                          0.01 * x[0] * x[1] - 0.04 * x[2]};
+    const double hessian[9] = {0, 0.01 * x[2], 0.01 * x[1], 0.01 * x[2], 0.12 * (x[1] - 0.5), 0.01 * x[0],
+                               0.01 * x[1], 0.01 * x[0], -0.04};
+    EXPECT_NEAR(s->gap, p(x), 1e-13);
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(s->normal[i], gradient[i], 1e-12);
+    for (int i = 0; i < 9; ++i) EXPECT_NEAR(s->normal_gradient[i], hessian[i], 1e-10);
+  }
+  EXPECT_GT(answered, 200);
+}
+
+// A sphere's gap |x| - R: the spline against the closed form within its h⁴ interpolation error,
+// the normal, and the curvature (I - n nᵀ)/|x|.
+TEST(GapSpline, SphereGapNormalAndCurvature) {
+  const double R = 0.5, h = R / 6;
+  const GapSpline spline({-R, -R, -R}, {R, R, R}, h, 0.0, false, [&](const Point3& x) { return norm(x) - R; });
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> radial(R - h, R + 2 * h);
+  for (int q = 0; q < 300; ++q) {
+    Point3 x = random_point(rng, 1.0);
+    const double r = radial(rng), scale = r / norm(x);
+    for (auto& c : x) c *= scale;
+    const auto s = spline.project(x);
+    ASSERT_TRUE(s.has_value());
+    EXPECT_NEAR(s->gap, r - R, 2e-4 * R);
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_NEAR(s->normal[i], x[i] / r, 2e-3);
+      for (int j = 0; j < 3; ++j)
+        EXPECT_NEAR(s->normal_gradient[3 * i + j], ((i == j) - x[i] * x[j] / (r * r)) / r, 0.02 / r);
+    }
+  }
+}
+
+// Far behind the rear face (beyond the triangulated shaft tube, which ends one tip size back) the
+// needle is read as a prism: the gap of the side face, as at the same x, y near the rear face.
+TEST(CadNeedleShape, ShaftFarBehindTheRearFaceIsAPrism) {
+  const double a = 1.0, L = 3.0, rho = 0.2;
+  const CadNeedleShape needle(box({-a, -a, 0}, {a, a, L}, 40), rho);
+  for (double z : {-0.5, -4.0, -30.0}) {
+    const ObstacleProjection p = needle.project({a + 0.03, 0.2, z});
+    EXPECT_NEAR(p.gap, 0.03, 1e-6) << z;
+    EXPECT_NEAR(p.normal[0], 1.0, 1e-6) << z;
+    EXPECT_NEAR(p.normal[2], 0.0, 1e-9) << z;
+  }
+}
+
+// The smooth normal field: around a rounded cylinder of 512 facets (a sixth of the spline's spacing
+// ρ/6 on the core) the exact projection's curvature across the mantle is 0 over each facet and 1/d
+// over each facet edge's wedge; the spline's is close to the smooth cylinder's 1/|x| everywhere,
+// and its gaps are the cylinder's within the facets' sagitta. (Facets as wide as the spacing would
+// come through: the spline smooths below its spacing only.)
+TEST(CadNeedleShape, CurvatureDoesNotSeeTheFacets) {
+  const double r = 1.0, L = 3.0, rho = 0.3;
+  const int m = 512;
+  const CadNeedleShape needle(cylinder(r, L, m, 8), rho);
+  const double radius = r + 0.02, sagitta = r * (1 - std::cos(kPi / m));
+  double exact_lo = 1e300, exact_hi = 0.0;
+  for (int i = 0; i < 200; ++i) {
+    const double phi = 2 * kPi * i / 200 + 0.01;
+    const Point3 x{radius * std::cos(phi), radius * std::sin(phi), 1.5}, t{-std::sin(phi), std::cos(phi), 0};
+    auto tangential = [&](const ObstacleProjection& p) {
+      double v = 0;
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) v += t[a] * p.normal_gradient[3 * a + b] * t[b];
+      return v;
+    };
+    const ObstacleProjection smooth = needle.project(x), exact = needle.project_exact(x);
+    EXPECT_NEAR(smooth.gap, radius - r, sagitta);
+    EXPECT_NEAR(tangential(smooth), 1 / radius, 0.1 / radius) << phi;
+    exact_lo = std::min(exact_lo, tangential(exact));
+    exact_hi = std::max(exact_hi, tangential(exact));
+  }
+  EXPECT_LT(exact_lo, 1e-9);  // the reference does see the facets
+  EXPECT_GT(exact_hi, 1 / (radius - rho));
 }
 
 TEST(CadNeedleShape, RejectsOpenSurfacesAndMissingRearFaces) {

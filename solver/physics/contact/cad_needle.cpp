@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -30,6 +31,10 @@ constexpr double kShaftExtension = 1.0;
 // Below this fraction of the tip's size the closest point is the point itself (normal: the
 // pseudo-normal, G = 0).
 constexpr double kOnSurface = 1e-12;
+// Gap spline: spacing ρ / kSplineCellsPerRadius, grown where the grid would hold more nodes than
+// kSplineNodeLimit (8 bytes each).
+constexpr double kSplineCellsPerRadius = 6.0;
+constexpr double kSplineNodeLimit = 2.5e7;
 
 double dot(const Point3& a, const Point3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 Point3 cross(const Point3& a, const Point3& b) {
@@ -170,6 +175,14 @@ CadNeedleShape::CadNeedleShape(TriangleSoup tip, double edge_radius) : edge_radi
 
   std::vector<Point3> facet_normal;
   trim_core(tip, offset_inwards(tip, edge_radius_, facet_normal), facet_normal);
+
+  const double margin = 2.0 * (GapSpline::kBandCells + 4.0) + 6.0;  // spacings, both sides, + the shaft's
+  double spacing = edge_radius_ / kSplineCellsPerRadius;
+  double nodes = 1.0;
+  for (int d = 0; d < 3; ++d) nodes *= (hi[d] - lo[d]) / spacing + margin;
+  if (nodes > kSplineNodeLimit) spacing *= std::cbrt(nodes / kSplineNodeLimit);
+  spline_ = std::make_unique<GapSpline>(lo, hi, spacing, edge_radius_, true,
+                                        [this](const Point3& xi) { return project_exact(xi).gap; });
 }
 
 void CadNeedleShape::trim_core(const TriangleSoup& tip, TriangleSoup offset, const std::vector<Point3>& facet_normal) {
@@ -251,6 +264,12 @@ void CadNeedleShape::trim_core(const TriangleSoup& tip, TriangleSoup offset, con
 }
 
 ObstacleProjection CadNeedleShape::project(const Point3& xi) const {
+  if (spline_)
+    if (const std::optional<ObstacleProjection> p = spline_->project(xi)) return *p;
+  return project_exact(xi);
+}
+
+ObstacleProjection CadNeedleShape::project_exact(const Point3& xi) const {
   const TriangleSurface::Closest c = core_->closest(xi);
   const Point3 offset = sub(xi, c.point);
   // Inside the core iff deeper than ρ inside the tip; the core's own pseudo-normal says so where

@@ -27,6 +27,8 @@
 // Rear face: the facets on z = 0 are removed and the rim extruded backwards by
 // kShaftExtension as a tube: the shaft continues behind the entry face (as the analytic
 // cylinder does), so the core is not rounded at the rim where the tissue's entry face meets it.
+// The contact reads the gap through a C² spline of these exact values (gap_spline.hpp) on a grid
+// of ρ/4, so neither its Newton iteration nor its cost sees the facets.
 // Limits: concave edges of the tip (the inner corners of a side port) stay sharp (the closing of
 // the complement is not built), so a tissue point just outside such a corner sees the normal turn
 // across the corner's bisector; a feature thinner than 2ρ leaves no core there: it is rounded away.
@@ -36,6 +38,7 @@
 #include <string>
 #include <vector>
 
+#include "physics/contact/gap_spline.hpp"
 #include "physics/contact/needle_obstacle.hpp"
 #include "physics/contact/triangle_surface.hpp"
 
@@ -47,10 +50,14 @@ class CadNeedleShape final : public NeedleShape {
   // not closed, has no facets on z = 0 facing -z, or nothing is left of it inside by ρ.
   CadNeedleShape(TriangleSoup tip, double edge_radius);
 
+  // Through the gap spline (gap_spline.hpp) within its band, else project_exact.
   ObstacleProjection project(const Point3& xi) const override;
+  // From the core's triangulation (the equations above).
+  ObstacleProjection project_exact(const Point3& xi) const;
   double edge_radius() const override { return edge_radius_; }
   double tip_volume() const { return tip_volume_; }  // of the triangulation, m³
   const TriangleSurface& core() const { return *core_; }
+  const GapSpline* gap_spline() const { return spline_.get(); }  // null for a sharp tip (ρ = 0)
 
  private:
   // The core's triangulation: `offset` (the tip's vertices moved inwards by ρ) trimmed to
@@ -61,6 +68,7 @@ class CadNeedleShape final : public NeedleShape {
   std::unique_ptr<TriangleSurface> surface_;  // the tip's, rear face opened into the shaft tube
   std::unique_ptr<TriangleSurface> core_;     // the core's
   std::vector<char> sign_reliable_;           // per core triangle: its pseudo-normals are whole
+  std::unique_ptr<GapSpline> spline_;
 };
 
 }  // namespace needlefem::contact
