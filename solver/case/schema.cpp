@@ -156,10 +156,10 @@ std::vector<KeySpec> build_schema() {
       real("needle.cad_facet_um", 50.0, 0.0, 1000.0,
            "needle.kind = \"cad\": largest facet of the triangulation the contact needle is (inside flat faces, "
            "away from curved edges; curved faces and edges follow needle.cad_facet_deg)"),
-      real("needle.cad_facet_deg", 0.75, 0.0, 5.0,
+      real("needle.cad_facet_deg", 1.5, 0.0, 5.0,
            "needle.kind = \"cad\": angle a facet of the contact needle spans on a curved face (facet = radius x "
-           "angle). The normals of neighbouring facets differ by it, and the tissue sliding over a coarse one "
-           "stalls Newton (docs/accuracy.md 9)"),
+           "angle). The contact reads the needle's gap through a smooth spline on a grid of edge radius / 6, "
+           "which hides facets finer than that grid (docs/accuracy.md 9)"),
       real("needle.radius_mm", 0.5, 0.0, 100.0, "Needle (shaft and head) radius r"),
       real("needle.bevel_deg", 20.0, 0.0, 90.0,
            "Bevel angle alpha between the bevel plane and the needle axis (ignored when fillet = radius)"),

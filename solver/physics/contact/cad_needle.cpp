@@ -31,8 +31,8 @@ constexpr double kShaftExtension = 1.0;
 // Below this fraction of the tip's size the closest point is the point itself (normal: the
 // pseudo-normal, G = 0).
 constexpr double kOnSurface = 1e-12;
-// Gap spline: spacing ρ / kSplineCellsPerRadius, grown where the grid would hold more nodes than
-// kSplineNodeLimit (8 bytes each).
+// Gap spline: spacing ρ / kSplineCellsPerRadius (why 6: gap_spline.hpp), grown where the grid
+// would hold more nodes than kSplineNodeLimit (8 bytes each).
 constexpr double kSplineCellsPerRadius = 6.0;
 constexpr double kSplineNodeLimit = 2.5e7;
 

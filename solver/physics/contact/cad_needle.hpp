@@ -28,7 +28,8 @@
 // kShaftExtension as a tube: the shaft continues behind the entry face (as the analytic
 // cylinder does), so the core is not rounded at the rim where the tissue's entry face meets it.
 // The contact reads the gap through a C² spline of these exact values (gap_spline.hpp) on a grid
-// of ρ/4, so neither its Newton iteration nor its cost sees the facets.
+// of ρ/6, so neither its Newton iteration nor its cost sees facets finer than that grid; the exact
+// projection answers where the spline does not (farther than its band from the surface).
 // Limits: concave edges of the tip (the inner corners of a side port) stay sharp (the closing of
 // the complement is not built), so a tissue point just outside such a corner sees the normal turn
 // across the corner's bisector; a feature thinner than 2ρ leaves no core there: it is rounded away.

@@ -3,19 +3,21 @@
 //
 // Why: the distance to a triangulated core has a continuous normal but a curvature G that jumps
 // between 0 over a facet and 1/d over each facet edge's wedge, with jumps as dense as the facets.
-// The penalty's Newton iteration sees those jumps, so whether a CAD tip's run completes depended on
+// The penalty's Newton iteration sees those jumps, so whether a CAD tip's run completed depended on
 // the facet angle (docs/accuracy.md §9), and each exact query tests hundreds of facets
-// (docs/speed.md). Over a grid of spacing h = ρ/4 the spline is smooth at the scale of the edge
-// rounding, costs one 4×4×4 stencil per query, and reproduces the rounded needle to its
-// interpolation error (h⁴ g'''' ≈ 1e-5 ρ on an edge of radius ρ) plus the facets' sagitta.
+// (docs/speed.md). The spline is C², costs one 4×4×4 stencil per query, hides facets finer than
+// its spacing h, and reproduces the rounded needle to its interpolation error (h⁴ g'''' ≈ 1e-4 ρ
+// on an edge of radius ρ) plus the facets' sagitta. h = ρ/6 (cad_needle.cpp): a point's stencil
+// reads samples up to 3h away along each axis, and inside the needle the gap has kinks (the core's
+// own medial axis) from depth ρ on; 3√3 h < ρ keeps them out of every stencil near the surface.
 //
 // Coefficients: the cubic quasi-interpolant c_i = (-f_{i-1} + 8 f_i - f_{i+1})/6 along each axis
-// (it reproduces cubics, hence the h⁴ error; de Boor, A Practical Guide to Splines, ch. XII), a
-// local rule, so the samples are needed only near the surface: f = clamp(g, -B, B) with the band
-// B = kBandCells h, and a node whose coarse neighbour (every fourth node) lies farther than B
-// plus their distance from the surface takes ±B without a query (g is 1-Lipschitz). The spline
-// equals the unclamped one where every sample in its reach (three nodes each way, 3√3 h) is
-// unclamped, i.e. where |g| <= B - 3√3 h; `project` answers only where |s| <= kTrustCells h,
+// (it reproduces cubics, hence the h⁴ error; de Boor, A Practical Guide to Splines, on quasi-
+// interpolants), a local rule, so the samples are needed only near the surface: f = clamp(g, -B, B)
+// with the band B = kBandCells h, and a node whose coarse neighbour (every fourth node) lies
+// farther than B plus their distance from the surface takes ±B without a query (g is 1-Lipschitz).
+// The spline equals the unclamped one where every sample in its reach (three nodes each way, 3√3 h)
+// is unclamped, i.e. where |g| <= B - 3√3 h; `project` answers only where |s| <= kTrustCells h,
 // inside that, and otherwise leaves the point to the exact query.
 // Shaft: a needle whose shaft continues behind the rear face (z = 0) is a prism along z there,
 // so below the grid's lowest trusted plane (deeper than B + ρ behind the rear face, where every
