@@ -7,14 +7,14 @@ alpha = 15;     // primary bevel angle to the axis, deg
 lancet = 24;    // lancet facet angle to the axis, deg
 psi = 110;      // azimuth of the lancet facets' normals from the heel side, deg
 shaft = 0.1;    // straight shaft behind the heel
-flat = 0.4;     // blunted point: a flat across the point where the bevel's section is this high
+flat = 0.2;     // blunted point: a flat across the point where the bevel's section is this high
                 // (0: sharp). The contact needle rounds every edge by needle.edge_radius_um (0.1 mm
                 // by default), which takes a point this thin back to about where its section is 2
                 // radii high; left sharp, the cavity's rounding moves the tissue there by 0.68 mm,
-                // more than its elements allow (tests/mesh: sharp_point_over_rounded_...). With the
-                // design study's motion the run stopped (IDA_CONV_FAIL) at t = 0.0865 s with a 0.2 mm
-                // flat and completed with 0.4 mm, as the trocar's did. The lancets reach 0.47 mm back
-                // from the sharp point: a flat of 0.13 mm or more cuts them off (docs/accuracy.md §9).
+                // more than its elements allow (tests/mesh: sharp_point_over_rounded_...). The
+                // lancets reach 0.47 mm back from the sharp point: a flat of 0.13 mm or more cuts
+                // them off, so at the default edge radius this is a 15 deg bevel with a flat; the
+                // lancets need edges of tens of µm (docs/accuracy.md §9).
 SetFactory("OpenCASCADE");
 deg = Pi / 180;
 tip = shaft + 2 * r / Tan(alpha * deg);  // the point, on the generator x = -r

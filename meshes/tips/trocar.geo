@@ -4,11 +4,10 @@
 r = 0.5;        // needle radius
 alpha = 20;     // facet angle to the axis, deg
 shaft = 0.1;    // straight shaft behind the facets' heels
-flat = 0.4;     // blunted point: a flat across the facets where their inscribed circle has this
+flat = 0.2;     // blunted point: a flat across the facets where their inscribed circle has this
                 // diameter (0: sharp). The contact needle rounds every edge by needle.edge_radius_um
-                // (0.1 mm by default), so a sharper point is not the needle in contact. With the
-                // design study's motion the run stopped (IDA_CONV_FAIL) at t = 0.089 s with a 0.2 mm
-                // flat and at 0.0995 s with 0.3 mm, and completed with 0.4 mm (docs/accuracy.md §9).
+                // (0.1 mm by default), so a sharper point is not the needle in contact
+                // (docs/accuracy.md §9).
 SetFactory("OpenCASCADE");
 deg = Pi / 180;
 tip = shaft + r / Tan(alpha * deg);  // the point, on the axis
