@@ -58,7 +58,6 @@ class CadNeedleShape final : public NeedleShape {
   double edge_radius() const override { return edge_radius_; }
   double tip_volume() const { return tip_volume_; }  // of the triangulation, m³
   const TriangleSurface& core() const { return *core_; }
-  const GapSpline* gap_spline() const { return spline_.get(); }  // null for a sharp tip (ρ = 0)
 
  private:
   // The core's triangulation: `offset` (the tip's vertices moved inwards by ρ) trimmed to
