@@ -239,7 +239,7 @@ TEST(GapSpline, ReproducesACubicExactly) {
     return 0.3 * (x[0] - 0.5) + 0.02 * std::pow(x[1] - 0.5, 3) + 0.01 * x[0] * x[1] * x[2] - 0.02 * x[2] * x[2];
   };
   const double h = 0.1;
-  const GapSpline spline({0, 0, 0}, {1, 1, 1}, h, 0.0, false, p);
+  const GapSpline spline({0, 0, 0}, {1, 1, 1}, h, 0.0, false, 1e9, p);
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   int answered = 0;
@@ -266,7 +266,7 @@ TEST(GapSpline, ReproducesACubicExactly) {
 // the normal, and the curvature (I - n nᵀ)/|x|.
 TEST(GapSpline, SphereGapNormalAndCurvature) {
   const double R = 0.5, h = R / 6;
-  const GapSpline spline({-R, -R, -R}, {R, R, R}, h, 0.0, false, [&](const Point3& x) { return norm(x) - R; });
+  const GapSpline spline({-R, -R, -R}, {R, R, R}, h, 0.0, false, 1e9, [&](const Point3& x) { return norm(x) - R; });
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> radial(R - h, R + 2 * h);
   for (int q = 0; q < 300; ++q) {

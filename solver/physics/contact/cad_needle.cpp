@@ -31,8 +31,8 @@ constexpr double kShaftExtension = 1.0;
 // Below this fraction of the tip's size the closest point is the point itself (normal: the
 // pseudo-normal, G = 0).
 constexpr double kOnSurface = 1e-12;
-// Gap spline: spacing ρ / kSplineCellsPerRadius (why 6: gap_spline.hpp), grown where the grid
-// would hold more nodes than kSplineNodeLimit (8 bytes each).
+// Gap spline: spacing ρ / kSplineCellsPerRadius (why 6: gap_spline.hpp), grown by the spline where
+// its grid would hold more than kSplineNodeLimit nodes.
 constexpr double kSplineCellsPerRadius = 6.0;
 constexpr double kSplineNodeLimit = 2.5e7;
 
@@ -176,13 +176,8 @@ CadNeedleShape::CadNeedleShape(TriangleSoup tip, double edge_radius) : edge_radi
   std::vector<Point3> facet_normal;
   trim_core(tip, offset_inwards(tip, edge_radius_, facet_normal), facet_normal);
 
-  const double margin = 2.0 * (GapSpline::kBandCells + 4.0) + 6.0;  // spacings, both sides, + the shaft's
-  double spacing = edge_radius_ / kSplineCellsPerRadius;
-  double nodes = 1.0;
-  for (int d = 0; d < 3; ++d) nodes *= (hi[d] - lo[d]) / spacing + margin;
-  if (nodes > kSplineNodeLimit) spacing *= std::cbrt(nodes / kSplineNodeLimit);
-  spline_ = std::make_unique<GapSpline>(lo, hi, spacing, edge_radius_, true,
-                                        [this](const Point3& xi) { return project_exact(xi).gap; });
+  spline_ = std::make_unique<GapSpline>(lo, hi, edge_radius_ / kSplineCellsPerRadius, edge_radius_, true,
+                                        kSplineNodeLimit, [this](const Point3& xi) { return project_exact(xi).gap; });
 }
 
 void CadNeedleShape::trim_core(const TriangleSoup& tip, TriangleSoup offset, const std::vector<Point3>& facet_normal) {

@@ -52,19 +52,26 @@ void quasi_interpolate(std::vector<double>& f, const std::vector<std::size_t>& s
 }  // namespace
 
 GapSpline::GapSpline(const Point3& lo, const Point3& hi, double spacing, double edge_radius, bool prism_below,
-                     const std::function<double(const Point3&)>& gap)
+                     double max_nodes, const std::function<double(const Point3&)>& gap)
     : h_(spacing), prism_below_(prism_below) {
   if (!(spacing > 0.0)) throw std::invalid_argument("the gap spline's spacing must be positive");
-  const double band = kBandCells * h_, margin = band + 4.0 * h_;
-  Point3 top{};
-  for (int a = 0; a < 3; ++a) lo_[a] = lo[a] - margin, top[a] = hi[a] + margin;
-  if (prism_below_) {
-    // Read for every point deeper than z_floor_: its stencil's nodes (three each way) lie deeper
-    // than B + ρ behind the rear face, where the band's closest points are on the shaft.
-    lo_[2] = std::min(lo_[2], -(band + edge_radius) - 6.0 * h_);
-    z_floor_ = lo_[2] + 3.0 * h_;
-  }
-  for (int a = 0; a < 3; ++a) n_[a] = static_cast<long>(std::ceil((top[a] - lo_[a]) / h_)) + 1;
+  double band = 0.0;
+  // The grid over [lo, hi] grown by the band and the stencil, for the spacing h_.
+  auto lay_out = [&] {
+    band = kBandCells * h_;
+    const double margin = band + 4.0 * h_;
+    Point3 top{};
+    for (int a = 0; a < 3; ++a) lo_[a] = lo[a] - margin, top[a] = hi[a] + margin;
+    if (prism_below_) {
+      // Read for every point deeper than z_floor_: its stencil's nodes (three each way) lie deeper
+      // than B + ρ behind the rear face, where the band's closest points are on the shaft.
+      lo_[2] = std::min(lo_[2], -(band + edge_radius) - 6.0 * h_);
+      z_floor_ = lo_[2] + 3.0 * h_;
+    }
+    for (int a = 0; a < 3; ++a) n_[a] = static_cast<long>(std::ceil((top[a] - lo_[a]) / h_)) + 1;
+    return static_cast<double>(n_[0]) * static_cast<double>(n_[1]) * static_cast<double>(n_[2]);
+  };
+  for (double nodes = lay_out(); nodes > max_nodes; nodes = lay_out()) h_ *= 1.01 * std::cbrt(nodes / max_nodes);
   auto node = [&](long i, long j, long k) { return Point3{lo_[0] + i * h_, lo_[1] + j * h_, lo_[2] + k * h_}; };
 
   // Coarse pass: the gap at every fourth node (and the last), to skip the nodes far from the surface.

@@ -43,9 +43,10 @@ class GapSpline {
   // Samples `gap` (thread-safe; the exact gap, > 0 outside) on the grid of spacing `spacing` that
   // covers the box [lo, hi] (the tip, rear face on z = 0) grown by the band and the stencil.
   // `prism_below`: the needle is a prism along z behind z = 0 (the shaft), deeper than the band
-  // and the edge radius `edge_radius`.
+  // and the edge radius `edge_radius`. Where the grid would hold more than `max_nodes` nodes
+  // (8 bytes each) the spacing grows until it does not.
   GapSpline(const Point3& lo, const Point3& hi, double spacing, double edge_radius, bool prism_below,
-            const std::function<double(const Point3&)>& gap);
+            double max_nodes, const std::function<double(const Point3&)>& gap);
 
   // g, n and G at ξ (needle frame) where the spline is trusted; nothing elsewhere.
   std::optional<ObstacleProjection> project(const Point3& xi) const;
