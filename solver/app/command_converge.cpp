@@ -80,6 +80,7 @@ void converge_command(const ConvergeOptions& options) {
                                          (run.out_dir / failed->directory / "run.log").string(),
                                          (run.out_dir / "converge.json").string()));
   for (const auto& warning : report.warnings) fmt::print("converge: warning: {}\n", warning);
+  if (const std::string line = convergence::coarser_band_line(report); !line.empty()) fmt::print("{}\n", line);
   // Refinement halves the sizes near the needle only: a coarse core stays coarse at every level.
   const std::string mesh_warning = coarse_mesh_warning(plan.points.front().coarse_mesh);
   fmt::print("{}{}\n", convergence::verdict_line(report), mesh_warning.empty() ? "" : "; " + mesh_warning);
@@ -101,7 +102,7 @@ void add_converge_command(CLI::App& app) {
   command->add_option("--jobs", options->jobs, "Levels run at the same time")
       ->check(CLI::Range(1, 64))
       ->capture_default_str();
-  command->add_option("--levels", options->levels, "Number of refinement levels (the estimate uses the finest three)")
+  command->add_option("--levels", options->levels, "Number of refinement levels (the estimate uses the finest three; with four or more, the band of the three below the finest is checked against the finest value)")
       ->check(CLI::Range(3, 5))
       ->capture_default_str();
   command->add_option("--from", options->from, "Coarsest refinement level")->check(CLI::Range(0, 4))->capture_default_str();

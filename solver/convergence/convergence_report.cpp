@@ -111,6 +111,15 @@ Report build_report(std::vector<LevelRun> levels, const Settings& settings) {
       row.values.push_back(run.status == "completed" ? number(run.summary, json::json_pointer(key.pointer)) : kNaN);
     row.estimate = estimate(row.values[n - 3], row.values[n - 2], row.values[n - 1], settings);
     if (row.compared) row.verdict = verdict(row.estimate, row.limit);
+    if (n >= 4) {
+      row.coarser_estimate = estimate(row.values[n - 4], row.values[n - 3], row.values[n - 2], settings);
+      const double finest = row.values[n - 1];
+      if (row.coarser_estimate->behaviour != Behaviour::incomplete && !std::isnan(finest)) {
+        row.finest_in_coarser_band = finest >= row.coarser_estimate->band_low && finest <= row.coarser_estimate->band_high;
+        ++report.coarser_bands_checked;
+        report.coarser_bands_held += *row.finest_in_coarser_band ? 1 : 0;
+      }
+    }
     report.rows.push_back(std::move(row));
   }
 
@@ -154,6 +163,9 @@ std::string report_csv(const Report& report) {
   for (const auto& run : report.levels) header.push_back(fmt::format("f_level{}", run.level));
   for (const char* column : {"observed_order", "f_extrapolated", "gci_fine", "band_low", "band_high", "verdict", "note"})
     header.emplace_back(column);
+  const bool checked_one_level_up = report.levels.size() >= 4;
+  if (checked_one_level_up)
+    for (const char* column : {"coarser_band_low", "coarser_band_high", "finest_in_coarser_band"}) header.emplace_back(column);
   std::string text = fmt::format("{}\n", fmt::join(header, ","));
   for (const auto& row : report.rows) {
     const Estimate& e = row.estimate;
@@ -162,6 +174,12 @@ std::string report_csv(const Report& report) {
     fields.insert(fields.end(), {e.behaviour == Behaviour::incomplete ? "" : order_text(e), number_text(e.extrapolated),
                                  number_text(e.gci_fine), number_text(e.band_low), number_text(e.band_high),
                                  row.verdict ? to_string(*row.verdict) : "", e.note});
+    if (checked_one_level_up) {
+      const bool estimated = row.coarser_estimate && row.coarser_estimate->behaviour != Behaviour::incomplete;
+      fields.insert(fields.end(), {estimated ? number_text(row.coarser_estimate->band_low) : "",
+                                   estimated ? number_text(row.coarser_estimate->band_high) : "",
+                                   row.finest_in_coarser_band ? (*row.finest_in_coarser_band ? "yes" : "no") : ""});
+    }
     for (auto& field : fields) field = sweep::csv_field(field);
     text += fmt::format("{}\n", fmt::join(fields, ","));
   }
@@ -222,6 +240,9 @@ json report_json(const Report& report) {
       r["limit_value"] = number_json(row.limit);
     }
     if (row.verdict) r["verdict"] = to_string(*row.verdict);
+    if (row.coarser_estimate && row.coarser_estimate->behaviour != Behaviour::incomplete)
+      r["coarser_band"] = {number_json(row.coarser_estimate->band_low), number_json(row.coarser_estimate->band_high)};
+    if (row.finest_in_coarser_band) r["finest_in_coarser_band"] = *row.finest_in_coarser_band;
     rows.push_back(r);
   }
   out["metrics"] = rows;
@@ -230,7 +251,22 @@ json report_json(const Report& report) {
     verdicts[limit.limit_name] = {{"verdict", to_string(limit.verdict)}, {"metric", limit.metric}, {"limit", limit.limit}};
   out["verdicts"] = verdicts;
   out["warnings"] = report.warnings;
+  if (report.levels.size() >= 4)
+    out["coarser_bands"] = {{"checked", report.coarser_bands_checked}, {"held", report.coarser_bands_held}};
   return out;
+}
+
+std::string coarser_band_line(const Report& report) {
+  if (report.levels.size() < 4) return "";
+  const int coarse = report.levels[report.levels.size() - 4].level, finest = report.levels.back().level;
+  std::vector<std::string> missed;
+  for (const auto& row : report.rows)
+    if (row.finest_in_coarser_band && !*row.finest_in_coarser_band)
+      missed.push_back(fmt::format("{} {:.4g} outside [{:.4g}, {:.4g}]", row.metric, row.values.back(),
+                                   row.coarser_estimate->band_low, row.coarser_estimate->band_high));
+  return fmt::format("converge: the bands of levels {}-{} hold level {}'s value for {} of {} metrics{}{}", coarse,
+                     finest - 1, finest, report.coarser_bands_held, report.coarser_bands_checked,
+                     missed.empty() ? "" : ": not ", fmt::join(missed, "; "));
 }
 
 std::string verdict_line(const Report& report) {

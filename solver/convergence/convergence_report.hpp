@@ -1,6 +1,8 @@
 // The error band of every metric a run reports, from the summary.json of the same case run at
 // three or more consecutive mesh.refinement_level values (`needlefem converge`), and the
-// verdict per safety limit. The estimates are grid_convergence.hpp's, on the three finest levels.
+// verdict per safety limit. The estimates are grid_convergence.hpp's, on the three finest levels;
+// with four or more levels each band is also checked one level up: the band of the three levels
+// below the finest against the finest value, a test of the band itself.
 //
 // Metrics (every part optional; what a summary lacks is skipped, what a level lacks is empty):
 //   safety.<limit>.<metric>.value  every object with a numeric "value" (point_max,
@@ -43,6 +45,11 @@ struct MetricRow {
   std::vector<double> values;    // per level (NaN when missing)
   Estimate estimate;             // on the three finest levels
   std::optional<Verdict> verdict;
+  // With four or more levels, the check of the band one level up: the estimate on the three
+  // levels below the finest, and whether the finest value fell inside its band (empty when the
+  // estimate or the finest value is missing).
+  std::optional<Estimate> coarser_estimate;
+  std::optional<bool> finest_in_coarser_band;
 };
 
 struct LimitVerdict {
@@ -61,6 +68,9 @@ struct Report {
   // hold no discretisation error), or a level's effective ratio (N_l / N_{l-1})^(1/3) is off the
   // nominal r by more than 25 %.
   std::vector<std::string> warnings;
+  // With four or more levels: how many rows' finest value fell inside the band of the three
+  // levels below it, of those where both exist ("the band held one level up").
+  int coarser_bands_held = 0, coarser_bands_checked = 0;
 };
 
 // Needs at least three levels, in increasing order.
@@ -68,6 +78,9 @@ Report build_report(std::vector<LevelRun> levels, const Settings& settings = {})
 
 std::string report_csv(const Report& report);
 nlohmann::json report_json(const Report& report);
+// With four or more levels, one line: how many bands of the three levels below the finest held
+// the finest value, naming the rows that did not ("" with fewer levels).
+std::string coarser_band_line(const Report& report);
 // One line: the overall verdict (fail if any limit fails, else undecided if any is, else pass)
 // and each limit's deciding metric with its band.
 std::string verdict_line(const Report& report);

@@ -3,7 +3,8 @@
 exit 0, a level folder with a completed summary per level (its case with the --set override), converge.csv with the documented
 columns and one row per metric, converge.json with three levels (tets, dofs, wall time) and a
 verdict per limit; the block's max log strain ln 1.2 passes the 0.19 limit; a second start runs
-nothing (resumed) and gives the same report; postprocess/plot_convergence.py writes a PNG.
+nothing (resumed) and gives the same report; postprocess/plot_convergence.py writes a PNG; --levels 4
+runs level 3 alone and checks each band of levels 0-2 against level 3's value.
 With --failing-case (a case whose run fails): converge exits non-zero with one stderr line naming
 level 0 and the reason, and still writes converge.json and converge.csv.
 With --coarse-tip (a brain-tip case, run on a coarse linear mesh with tied contact): the last line
@@ -88,6 +89,27 @@ plot = subprocess.run(["/usr/bin/python3", args.plot, str(args.out)], capture_ou
 print(plot.stdout, plot.stderr)
 png = args.out / "convergence.png"
 check(plot.returncode == 0 and png.exists() and png.stat().st_size > 10000, f"{png} written")
+
+# A fourth level reuses the three and checks the band of levels 0-2 against level 3's value.
+four = subprocess.run(command + ["--levels", "4"], capture_output=True, text=True)
+print(four.stdout, four.stderr)
+started = [line.split("started ", 1)[1] for line in four.stdout.splitlines() if line.startswith("converge: started ")]
+check(four.returncode == 0 and started == ["level_3"], f"--levels 4 runs level 3 only: {started}")
+with open(args.out / "converge.csv") as f:
+    rows4 = list(csv.DictReader(f))
+check(rows4 and list(rows4[0].keys()) == expected[:6] + ["f_level3"] + expected[6:] + [
+    "coarser_band_low", "coarser_band_high", "finest_in_coarser_band"], f"4-level columns {list(rows4[0].keys())}")
+# Each row says whether level 3's value lies in the band of levels 0-2 (the block's values differ
+# between levels in the sixth digit, and its narrowest bands do not always hold them).
+inside = [float(r["coarser_band_low"]) <= float(r["f_level3"]) <= float(r["coarser_band_high"]) for r in rows4]
+check(rows4 and [r["finest_in_coarser_band"] for r in rows4] == ["yes" if i else "no" for i in inside],
+      "finest_in_coarser_band says whether f_level3 lies in [coarser_band_low, coarser_band_high]")
+line = f"converge: the bands of levels 0-2 hold level 3's value for {sum(inside)} of {len(rows4)} metrics"
+check(any(l.startswith(line) for l in four.stdout.splitlines()), f"stdout says so: {line!r}")
+report4 = json.loads((args.out / "converge.json").read_text())
+check(report4["coarser_bands"] == {"checked": len(rows4), "held": sum(inside)}, f"converge.json: {report4.get('coarser_bands')}")
+strain4 = {r["metric"]: r for r in rows4}.get("max.log_strain")
+check(strain4 is not None and abs(float(strain4["f_level3"]) - math.log(1.2)) < 1e-3, "max.log_strain at level 3 is ln 1.2")
 
 if args.failing_case:
     out = args.out.parent / (args.out.name + "_failing")

@@ -174,5 +174,56 @@ TEST(ConvergenceReport, PointMaximumFallbackAndFailedLevel) {
   EXPECT_EQ(report_json(report)["levels"][1]["error"], "diverged");
 }
 
+// Four levels: each band of the three levels below the finest is checked against the finest
+// value. A second-order sequence (f = 0.1 + 0.08 h², h = 1, 1/2, 1/4, 1/8) lands inside its
+// band one level up; a finest value that jumps by ten times the last difference does not.
+TEST(ConvergenceReport, BandOfTheCoarserLevelsCheckedAgainstTheFinest) {
+  const auto levels_with = [](double finest_critical) {
+    std::vector<LevelRun> levels;
+    for (int l = 0; l < 4; ++l) {
+      const double h = std::ldexp(1.0, -l), critical = l == 3 ? finest_critical : 0.1 + 0.08 * h * h;
+      levels.push_back({l, "", "completed", "", summary(0.15, critical, 0.0, true)});
+      levels.back().summary["mesh"]["tets"] = 1000 << (3 * l);
+    }
+    return levels;
+  };
+  const auto critical_row = [](const Report& report) {
+    return *std::find_if(report.rows.begin(), report.rows.end(),
+                         [](const MetricRow& r) { return r.metric == "safety.log_strain.critical_distance"; });
+  };
+  const Report smooth = build_report(levels_with(0.1 + 0.08 / 64));
+  const MetricRow held = critical_row(smooth);
+  ASSERT_TRUE(held.coarser_estimate.has_value());
+  // Levels 0-2: p = 2, GCI half-width 1.25 |e21| / 3 = 1.25 * 0.015 / 3 around 0.105.
+  EXPECT_NEAR(held.coarser_estimate->band_low, 0.105 - 1.25 * 0.015 / 3, 1e-12);
+  EXPECT_NEAR(held.coarser_estimate->band_high, 0.105 + 1.25 * 0.015 / 3, 1e-12);
+  ASSERT_TRUE(held.finest_in_coarser_band.has_value());
+  EXPECT_TRUE(*held.finest_in_coarser_band);
+  // Every row with values on all four levels is checked (the volume is mesh-independent: its band
+  // is the point itself, which the equal finest value lies in).
+  EXPECT_EQ(smooth.coarser_bands_checked, static_cast<int>(smooth.rows.size()));
+  EXPECT_EQ(smooth.coarser_bands_held, smooth.coarser_bands_checked);
+  EXPECT_NE(coarser_band_line(smooth).find("hold level 3's value for"), std::string::npos) << coarser_band_line(smooth);
+  const std::string csv = report_csv(smooth);
+  EXPECT_NE(csv.substr(0, csv.find('\n')).find(",note,coarser_band_low,coarser_band_high,finest_in_coarser_band"),
+            std::string::npos);
+
+  const Report jumped = build_report(levels_with(0.1 + 0.08 / 16 - 10 * (0.08 / 16 - 0.08 / 64)));
+  const MetricRow missed = critical_row(jumped);
+  ASSERT_TRUE(missed.finest_in_coarser_band.has_value());
+  EXPECT_FALSE(*missed.finest_in_coarser_band);
+  EXPECT_EQ(jumped.coarser_bands_held, jumped.coarser_bands_checked - 1);
+  EXPECT_NE(coarser_band_line(jumped).find("not safety.log_strain.critical_distance"), std::string::npos)
+      << coarser_band_line(jumped);
+  EXPECT_EQ(report_json(jumped)["coarser_bands"]["held"], jumped.coarser_bands_checked - 1);
+  // Three levels: nothing to check one level up.
+  std::vector<LevelRun> three = levels_with(0.1);
+  three.pop_back();
+  const Report report3 = build_report(three);
+  EXPECT_FALSE(report3.rows[0].coarser_estimate.has_value());
+  EXPECT_EQ(coarser_band_line(report3), "");
+  EXPECT_FALSE(report_json(report3).contains("coarser_bands"));
+}
+
 }  // namespace
 }  // namespace needlefem::convergence
