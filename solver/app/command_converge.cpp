@@ -102,7 +102,9 @@ void add_converge_command(CLI::App& app) {
   command->add_option("--jobs", options->jobs, "Levels run at the same time")
       ->check(CLI::Range(1, 64))
       ->capture_default_str();
-  command->add_option("--levels", options->levels, "Number of refinement levels (the estimate uses the finest three; with four or more, the band of the three below the finest is checked against the finest value)")
+  command->add_option("--levels", options->levels,
+                      "Number of refinement levels (the estimate uses the finest three; with four or more, the band "
+                      "of the three below the finest is checked against the finest value)")
       ->check(CLI::Range(3, 5))
       ->capture_default_str();
   command->add_option("--from", options->from, "Coarsest refinement level")->check(CLI::Range(0, 4))->capture_default_str();
