@@ -31,7 +31,7 @@ if [ ${#missing[@]} -gt 0 ]; then
 fi
 
 cmake -S "$root" -B "$build_dir" -DCMAKE_BUILD_TYPE="${CMAKE_BUILD_TYPE:-Release}" >/dev/null
-cmake --build "$build_dir" -j "$(env -u OMP_NUM_THREADS -u OMP_THREAD_LIMIT nproc)"
+"$root/scripts/build.sh"
 # On a CPU model OpenBLAS does not know, the kernels to export before running (scripts/blas_env.sh).
 blas=$("$root/scripts/blas_env.sh" "$build_dir/needlefem")
 [ -z "$blas" ] || echo "setup: OpenBLAS does not know this CPU; before running needlefem: $blas"

@@ -112,10 +112,11 @@ Report build_report(std::vector<LevelRun> levels, const Settings& settings) {
     row.estimate = estimate(row.values[n - 3], row.values[n - 2], row.values[n - 1], settings);
     if (row.compared) row.verdict = verdict(row.estimate, row.limit);
     if (n >= 4) {
-      row.coarser_estimate = estimate(row.values[n - 4], row.values[n - 3], row.values[n - 2], settings);
+      const Estimate coarser = estimate(row.values[n - 4], row.values[n - 3], row.values[n - 2], settings);
+      if (coarser.behaviour != Behaviour::incomplete) row.coarser_estimate = coarser;
       const double finest = row.values[n - 1];
-      if (row.coarser_estimate->behaviour != Behaviour::incomplete && !std::isnan(finest)) {
-        row.finest_in_coarser_band = finest >= row.coarser_estimate->band_low && finest <= row.coarser_estimate->band_high;
+      if (row.coarser_estimate && !std::isnan(finest)) {
+        row.finest_in_coarser_band = finest >= coarser.band_low && finest <= coarser.band_high;
         ++report.coarser_bands_checked;
         report.coarser_bands_held += *row.finest_in_coarser_band ? 1 : 0;
       }
@@ -175,9 +176,9 @@ std::string report_csv(const Report& report) {
                                  number_text(e.gci_fine), number_text(e.band_low), number_text(e.band_high),
                                  row.verdict ? to_string(*row.verdict) : "", e.note});
     if (checked_one_level_up) {
-      const bool estimated = row.coarser_estimate && row.coarser_estimate->behaviour != Behaviour::incomplete;
-      fields.insert(fields.end(), {estimated ? number_text(row.coarser_estimate->band_low) : "",
-                                   estimated ? number_text(row.coarser_estimate->band_high) : "",
+      const auto& coarser = row.coarser_estimate;
+      fields.insert(fields.end(), {coarser ? number_text(coarser->band_low) : "",
+                                   coarser ? number_text(coarser->band_high) : "",
                                    row.finest_in_coarser_band ? (*row.finest_in_coarser_band ? "yes" : "no") : ""});
     }
     for (auto& field : fields) field = sweep::csv_field(field);
@@ -240,7 +241,7 @@ json report_json(const Report& report) {
       r["limit_value"] = number_json(row.limit);
     }
     if (row.verdict) r["verdict"] = to_string(*row.verdict);
-    if (row.coarser_estimate && row.coarser_estimate->behaviour != Behaviour::incomplete)
+    if (row.coarser_estimate)
       r["coarser_band"] = {number_json(row.coarser_estimate->band_low), number_json(row.coarser_estimate->band_high)};
     if (row.finest_in_coarser_band) r["finest_in_coarser_band"] = *row.finest_in_coarser_band;
     rows.push_back(r);

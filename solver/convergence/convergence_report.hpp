@@ -46,8 +46,8 @@ struct MetricRow {
   Estimate estimate;             // on the three finest levels
   std::optional<Verdict> verdict;
   // With four or more levels, the check of the band one level up: the estimate on the three
-  // levels below the finest, and whether the finest value fell inside its band (empty when the
-  // estimate or the finest value is missing).
+  // levels below the finest (empty when one of them lacks the value), and whether the finest
+  // value fell inside its band (empty when either is missing).
   std::optional<Estimate> coarser_estimate;
   std::optional<bool> finest_in_coarser_band;
 };
