@@ -6,12 +6,18 @@ the limit is so far off that the line would flatten the values); one panel per m
 that decides its limit's verdict marked "(decides)".
 
 Reads DIR/converge.json (written by solver/convergence/convergence_report.cpp; this script only
-draws it, the estimates are the C++ module's) and writes DIR/convergence.png.
+draws it, the estimates are the C++ module's) and writes DIR/convergence.png. When the folder has
+DIR/converge_history.csv (solver/convergence/history_bands.cpp), also DIR/convergence_history.png:
+the limited quantities against time, each level's curve and the band around the finest at every
+output time, with the limit line: whether a rise or a fall of a curve is larger than its bands.
 
-usage: /usr/bin/python3 postprocess/plot_convergence.py DIR [--png OUT.png] [--all]
-  --all  also the metrics without a limit (needle loads, volumes above a limit, ...)
+usage: /usr/bin/python3 postprocess/plot_convergence.py DIR [--png OUT.png] [--all] [--history Q,Q,...]
+  --all      also the metrics without a limit (needle loads, volumes above a limit, ...)
+  --history  the history.csv quantities to draw against time (default: the critical-distance
+             values, else the point maxima, of the limited fields)
 """
 import argparse
+import csv
 import json
 import math
 import pathlib
@@ -27,11 +33,10 @@ def finite(x):
     return x is not None and math.isfinite(x)
 
 
-def draw_limit(ax, metric):
-    """The limit as a dashed line; when drawing it would squash the values more than tenfold, only
-    in the legend, saying where it lies."""
-    limit = metric["limit_value"]
-    shown = [v for v in metric["values"] + metric["band"] + [metric.get("f_extrapolated")] if finite(v)]
+def draw_limit(ax, limit, shown):
+    """The limit as a dashed line; when drawing it would squash the shown values more than
+    tenfold, only in the legend, saying where it lies."""
+    shown = [v for v in shown if finite(v)]
     low, high = (min(shown), max(shown)) if shown else (limit, limit)
     span = max(high - low, 0.05 * abs(high), 1e-300)
     if max(high, limit) - min(low, limit) <= 10 * span:
@@ -40,11 +45,66 @@ def draw_limit(ax, metric):
         ax.plot([], [], color="C3", linestyle="--", label=f"limit {limit:g} ({'above' if limit > high else 'below'}, off scale)")
 
 
+# The history.csv point maximum of each limited field (summary "max" names differ).
+POINT_MAXIMUM_OF_LIMIT = {"log_strain": "max_log_strain", "strain_rate_per_s": "max_strain_rate",
+                          "stress_pa": "max_von_mises"}
+
+
+def number(text):
+    return float(text) if text not in ("", None) else math.nan
+
+
+def plot_history(args, report):
+    """DIR/convergence_history.png from DIR/converge_history.csv; returns its path, or None."""
+    path = args.dir / "converge_history.csv"
+    if not path.exists():
+        return None
+    with open(path) as f:
+        rows = list(csv.DictReader(f))
+    limits = {name: v["limit"] for name, v in report.get("verdicts", {}).items()}
+    limit_of = {f"critical_distance_{name}": limit for name, limit in limits.items()}
+    limit_of.update({POINT_MAXIMUM_OF_LIMIT[name]: limit for name, limit in limits.items() if name in POINT_MAXIMUM_OF_LIMIT})
+    present = list(dict.fromkeys(r["quantity"] for r in rows))
+    if args.history:
+        quantities = args.history.split(",")
+        unknown = [q for q in quantities if q not in present]
+        if unknown:
+            sys.exit(f"{path}: no quantity {', '.join(unknown)}")
+    else:
+        quantities = [q for q in present if q.startswith("critical_distance_") and q in limit_of] or [
+            q for q in present if q in limit_of]
+    if not quantities:
+        return None
+    level_columns = [c for c in rows[0] if c.startswith("f_level")]
+    fig, axes = plt.subplots(1, len(quantities), figsize=(4.6 * len(quantities), 3.6), squeeze=False)
+    for ax, quantity in zip(axes.flat, quantities):
+        series = [r for r in rows if r["quantity"] == quantity]
+        times = [number(r["time_s"]) for r in series]
+        for i, column in enumerate(level_columns):
+            finest = i == len(level_columns) - 1
+            ax.plot(times, [number(r[column]) for r in series], "o-" if finest else "-", markersize=3,
+                    color="C0" if finest else f"{0.75 - 0.5 * i / max(len(level_columns) - 1, 1):.2f}",
+                    label=column.replace("f_", "").replace("level", "level "))
+        low, high = [number(r["band_low"]) for r in series], [number(r["band_high"]) for r in series]
+        ax.fill_between(times, low, high, color="C0", alpha=0.25, label="GCI band (finest)")
+        if quantity in limit_of:
+            draw_limit(ax, limit_of[quantity], low + high)
+        ax.set_title(quantity, fontsize=9)
+        ax.set_xlabel("time (s)")
+        ax.legend(fontsize=7)
+    fig.tight_layout()
+    out = args.dir / "convergence_history.png"
+    fig.savefig(out, dpi=120)
+    plt.close(fig)
+    return out
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("dir", type=pathlib.Path)
     parser.add_argument("--png", type=pathlib.Path)
     parser.add_argument("--all", action="store_true")
+    parser.add_argument("--history")
     args = parser.parse_args()
     path = args.dir / "converge.json"
     if not path.exists():
@@ -74,7 +134,7 @@ def main():
         if finite(metric.get("f_extrapolated")):
             ax.plot([0.0], [metric["f_extrapolated"]], "*", color="C2", markersize=10, label="Richardson (h = 0)")
         if finite(metric.get("limit_value")) and "verdict" in metric:
-            draw_limit(ax, metric)
+            draw_limit(ax, metric["limit_value"], metric["values"] + metric["band"] + [metric.get("f_extrapolated")])
         title = metric["metric"] + (f": {metric['verdict']}" if "verdict" in metric else "")
         if metric["metric"] in deciders:
             title += " (decides)"
@@ -91,6 +151,9 @@ def main():
     out = args.png or args.dir / "convergence.png"
     fig.savefig(out, dpi=120)
     print(f"plot_convergence: wrote {out}")
+    history = plot_history(args, report)
+    if history:
+        print(f"plot_convergence: wrote {history}")
 
 
 if __name__ == "__main__":

@@ -4,7 +4,9 @@
 // through the sweep machinery (sweep/sweep_plan.hpp plan_axis, sweep/sweep_runner.hpp: resumable,
 // concurrent `needlefem run` children, DIR/level_<L>/run.log and summary.json), then estimates
 // each summary metric's observed order, Richardson value and GCI band on the three finest levels
-// (convergence/convergence_report.hpp) and writes DIR/converge.csv and DIR/converge.json. Prints
+// (convergence/convergence_report.hpp) and writes DIR/converge.csv and DIR/converge.json, and when
+// every level completed the band of every history.csv quantity at every output time
+// (convergence/history_bands.hpp) in DIR/converge_history.csv. Prints
 // one verdict line per run: pass, fail or undecided per safety limit, followed on a mesh coarser than
 // the converged setting by the warning of case/mesh_resolution.hpp. A level that fails makes the
 // command fail with one line naming it, after writing what the other levels gave.
@@ -19,6 +21,8 @@
 #include "case/mesh_resolution.hpp"
 #include "case/schema.hpp"
 #include "convergence/convergence_report.hpp"
+#include "convergence/history_bands.hpp"
+#include "output/history_table.hpp"
 #include "sweep/sweep_runner.hpp"
 #include "sweep/sweep_table.hpp"
 
@@ -74,6 +78,16 @@ void converge_command(const ConvergeOptions& options) {
   sweep::write_file_atomically(run.out_dir / "converge.csv", convergence::report_csv(report));
 
   const auto failed = std::find_if(levels.begin(), levels.end(), [](const auto& l) { return l.status != "completed"; });
+  if (failed == levels.end()) {
+    std::vector<int> numbers;
+    std::vector<output::HistoryTable> histories;
+    for (const auto& level : levels) {
+      numbers.push_back(level.level);
+      histories.push_back(output::read_history_table(run.out_dir / level.directory / "history.csv"));
+    }
+    sweep::write_file_atomically(run.out_dir / "converge_history.csv",
+                                 convergence::history_bands_csv(convergence::history_bands(numbers, histories)));
+  }
   if (failed != levels.end())
     throw std::runtime_error(fmt::format("converge: level {} {}: {} (see {}); partial results in {}", failed->level,
                                          failed->status, failed->error.empty() ? "no summary" : failed->error,
@@ -94,7 +108,8 @@ void add_converge_command(CLI::App& app) {
       "Error band of every answer: run a case at three consecutive mesh.refinement_level values (each halves the "
       "element sizes near the needle), then per summary metric the observed order, Richardson value and grid "
       "convergence index (GCI, Celik et al. 2008); converge.csv + converge.json and a pass/fail/undecided verdict "
-      "per safety limit (decided by the critical-distance value when the run reports one). Resumes: finished "
+      "per safety limit (decided by the critical-distance value when the run reports one); converge_history.csv, "
+      "the band of every history.csv quantity at every output time. Resumes: finished "
       "levels are not run again; each level's run is in OUT/level_<L>/, and postprocess/plot_convergence.py OUT draws "
       "the bands. Options after `--` go to every run.");
   auto options = std::make_shared<ConvergeOptions>();

@@ -39,8 +39,6 @@ json summary_number(const json& summary, const char* pointer) {
   return summary.is_object() && summary.contains(at) && summary.at(at).is_number() ? summary.at(at) : json(nullptr);
 }
 
-std::string number_text(double x) { return std::isfinite(x) ? fmt::format("{:.9g}", x) : std::string(); }
-
 struct MetricKey {
   std::string metric, pointer, limit_name;
   bool compared = false;
@@ -172,9 +170,9 @@ std::string report_csv(const Report& report) {
     const Estimate& e = row.estimate;
     std::vector<std::string> fields{row.metric, row.limit_name, number_text(row.limit)};
     for (double v : row.values) fields.push_back(number_text(v));
-    fields.insert(fields.end(), {e.behaviour == Behaviour::incomplete ? "" : order_text(e), number_text(e.extrapolated),
-                                 number_text(e.gci_fine), number_text(e.band_low), number_text(e.band_high),
-                                 row.verdict ? to_string(*row.verdict) : "", e.note});
+    const auto cells = estimate_cells(e);
+    fields.insert(fields.end(), cells.begin(), cells.end());
+    fields.insert(fields.end(), {row.verdict ? to_string(*row.verdict) : "", e.note});
     if (checked_one_level_up) {
       const auto& coarser = row.coarser_estimate;
       fields.insert(fields.end(), {coarser ? number_text(coarser->band_low) : "",

@@ -85,6 +85,13 @@ std::string order_text(const Estimate& e) {
   }
 }
 
+std::string number_text(double x) { return std::isfinite(x) ? fmt::format("{:.9g}", x) : std::string(); }
+
+std::vector<std::string> estimate_cells(const Estimate& e) {
+  return {e.behaviour == Behaviour::incomplete ? "" : order_text(e), number_text(e.extrapolated), number_text(e.gci_fine),
+          number_text(e.band_low), number_text(e.band_high)};
+}
+
 const char* to_string(Behaviour b) {
   switch (b) {
     case Behaviour::converged: return "converged";

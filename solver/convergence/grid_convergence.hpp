@@ -39,6 +39,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace needlefem::convergence {
 
@@ -75,6 +76,11 @@ Verdict verdict(const Estimate& estimate, double limit);
 // "n/a" for a mesh-independent quantity, the behaviour's name when there is no order, else
 // the observed order in shortest form.
 std::string order_text(const Estimate& estimate);
+// A value as the tables write it (9 significant digits), "" when it is not finite.
+std::string number_text(double value);
+// The table cells of an estimate: observed order (order_text, "" when incomplete), f_extrapolated,
+// gci_fine, band_low, band_high.
+std::vector<std::string> estimate_cells(const Estimate& estimate);
 const char* to_string(Behaviour behaviour);
 const char* to_string(Verdict verdict);
 

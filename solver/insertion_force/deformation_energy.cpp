@@ -4,30 +4,17 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
+#include "output/history_table.hpp"
+
 namespace needlefem::insertion {
 
 namespace {
-
-std::vector<std::string> split_csv(const std::string& line) {
-  std::vector<std::string> fields;
-  std::stringstream stream(line);
-  std::string field;
-  while (std::getline(stream, field, ',')) fields.push_back(field);
-  return fields;
-}
-
-std::size_t column(const std::vector<std::string>& header, const std::string& name, const std::string& file) {
-  const auto it = std::find(header.begin(), header.end(), name);
-  if (it == header.end()) throw std::runtime_error(fmt::format("{}: no column '{}'", file, name));
-  return static_cast<std::size_t>(it - header.begin());
-}
 
 // The run's insertion speed and contact mode from the case echoed in its summary.json.
 void read_run_summary(const std::filesystem::path& summary_file, EnergySamples& samples) {
@@ -48,27 +35,14 @@ void read_run_summary(const std::filesystem::path& summary_file, EnergySamples& 
 }  // namespace
 
 EnergySamples read_energy_history(const std::filesystem::path& history_csv) {
-  const std::string file = history_csv.string();
-  std::ifstream in(history_csv);
-  if (!in) throw std::runtime_error(fmt::format("{}: cannot open", file));
-  std::string line;
-  if (!std::getline(in, line)) throw std::runtime_error(fmt::format("{}: empty file", file));
-  const std::vector<std::string> header = split_csv(line);
-  const std::size_t time_column = column(header, "time_s", file);
-  const std::size_t energy_column = column(header, "elastic_energy_j", file);
+  const output::HistoryTable history = output::read_history_table(history_csv);
+  const std::size_t time_column = history.column("time_s");
+  const std::size_t energy_column = history.column("elastic_energy_j");
   EnergySamples samples;
   read_run_summary(history_csv.parent_path() / "summary.json", samples);
-  for (int row = 2; std::getline(in, line); ++row) {
-    if (line.empty()) continue;
-    const std::vector<std::string> fields = split_csv(line);
-    if (fields.size() <= std::max(time_column, energy_column))
-      throw std::runtime_error(fmt::format("{}: line {} has {} fields", file, row, fields.size()));
-    try {
-      samples.displacement_m.push_back(std::stod(fields[time_column]) * samples.insertion_speed_m_per_s);
-      samples.energy_j.push_back(std::stod(fields[energy_column]));
-    } catch (const std::exception&) {
-      throw std::runtime_error(fmt::format("{}: line {}: not a number in time_s or elastic_energy_j", file, row));
-    }
+  for (const auto& row : history.rows) {
+    samples.displacement_m.push_back(row[time_column] * samples.insertion_speed_m_per_s);
+    samples.energy_j.push_back(row[energy_column]);
   }
   return samples;
 }

@@ -1,9 +1,10 @@
 #!/usr/bin/python3
 """`needlefem converge` end to end on a tiny homogeneous block (tests/convergence/block_short.toml):
 exit 0, a level folder with a completed summary per level (its case with the --set override), converge.csv with the documented
-columns and one row per metric, converge.json with three levels (tets, dofs, wall time) and a
+columns and one row per metric, converge_history.csv with each level's history value and a band
+per quantity and output time, converge.json with three levels (tets, dofs, wall time) and a
 verdict per limit; the block's max log strain ln 1.2 passes the 0.19 limit; a second start runs
-nothing (resumed) and gives the same report; postprocess/plot_convergence.py writes a PNG; --levels 4
+nothing (resumed) and gives the same report; postprocess/plot_convergence.py writes the two PNGs; --levels 4
 runs level 3 alone and checks each band of levels 0-2 against level 3's value.
 With --failing-case (a case whose run fails): converge exits non-zero with one stderr line naming
 level 0 and the reason, and still writes converge.json and converge.csv.
@@ -69,6 +70,29 @@ check(strain is not None and abs(float(strain["f_level2"]) - math.log(1.2)) < 1e
 check(strain is not None and strain["verdict"] == "pass" and float(strain["band_high"]) < 0.19,
       "max.log_strain passes 0.19 with its band")
 
+# converge_history.csv: every history quantity at every output time, each level's value as its
+# history.csv has it, and a band around the finest.
+with open(args.out / "converge_history.csv") as f:
+    history_rows = list(csv.DictReader(f))
+check(history_rows and list(history_rows[0].keys()) == ["quantity", "time_s", "f_level0", "f_level1", "f_level2"]
+      + expected[6:11] + ["note"], f"converge_history.csv columns {list(history_rows[0].keys()) if history_rows else None}")
+histories = []
+for level in range(3):
+    with open(args.out / f"level_{level}" / "history.csv") as f:
+        histories.append(list(csv.DictReader(f)))
+quantities = [c for c in histories[2][0] if c not in ("time_s", "steps", "newton_iterations")
+              and not c.endswith(("_x_mm", "_y_mm", "_z_mm"))]
+check(len(history_rows) == len(quantities) * len(histories[2]),
+      f"one row per quantity and output time: {len(history_rows)} = {len(quantities)} x {len(histories[2])}")
+check(all(float(r[f"f_level{level}"]) == float(histories[level][i % len(histories[2])][r["quantity"]])
+          and float(r["time_s"]) == float(histories[2][i % len(histories[2])]["time_s"])
+          for i, r in enumerate(history_rows) for level in range(3)),
+      "each level's value is its history.csv's at the row's time")
+final_strain = [r for r in history_rows if r["quantity"] == "max_log_strain"][-1]
+check(abs(float(final_strain["f_level2"]) - math.log(1.2)) < 1e-3 and float(final_strain["band_low"])
+      <= float(final_strain["f_level2"]) <= float(final_strain["band_high"]),
+      f"max_log_strain at the last time is ln 1.2 inside its band: {final_strain}")
+
 report = json.loads((args.out / "converge.json").read_text())
 check([level["level"] for level in report["levels"]] == [0, 1, 2], "converge.json has levels 0, 1, 2")
 check(all(level["status"] == "completed" and level["tets"] and level["dofs"] and level["wall_s"] is not None
@@ -89,6 +113,9 @@ plot = subprocess.run(["/usr/bin/python3", args.plot, str(args.out)], capture_ou
 print(plot.stdout, plot.stderr)
 png = args.out / "convergence.png"
 check(plot.returncode == 0 and png.exists() and png.stat().st_size > 10000, f"{png} written")
+history_png = args.out / "convergence_history.png"
+check(history_png.exists() and history_png.stat().st_size > 10000 and f"wrote {history_png}" in plot.stdout,
+      f"{history_png} written (the limited quantities against time with their bands)")
 
 # A fourth level reuses the three and checks the band of levels 0-2 against level 3's value.
 four = subprocess.run(command + ["--levels", "4"], capture_output=True, text=True)

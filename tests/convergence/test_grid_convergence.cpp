@@ -1,13 +1,16 @@
 // convergence/grid_convergence.hpp on sequences with a known answer, and
-// convergence/convergence_report.hpp on synthetic summaries.
+// convergence/convergence_report.hpp on synthetic summaries, convergence/history_bands.hpp on
+// synthetic histories.
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
 #include "convergence/convergence_report.hpp"
 #include "convergence/grid_convergence.hpp"
+#include "convergence/history_bands.hpp"
 
 namespace needlefem::convergence {
 namespace {
@@ -223,6 +226,42 @@ TEST(ConvergenceReport, BandOfTheCoarserLevelsCheckedAgainstTheFinest) {
   EXPECT_FALSE(report3.rows[0].coarser_estimate.has_value());
   EXPECT_EQ(coarser_band_line(report3), "");
   EXPECT_FALSE(report_json(report3).contains("coarser_bands"));
+}
+
+// Histories on h = 1, 1/2, 1/4 whose critical-distance value is g(t) + 0.08 h² t: at every time
+// the order 2 and the band 1.25 |e21| / 3 around the finest value; the counters and the maxima's
+// positions are not quantities; a time one level lacks is incomplete there, and a time written
+// to fewer digits is matched.
+TEST(HistoryBands, BandAtEveryOutputTime) {
+  const auto history = [](int level, const std::vector<double>& times) {
+    output::HistoryTable table;
+    table.columns = {"time_s", "steps", "newton_iterations", "critical_distance_log_strain",
+                     "max_log_strain_x_mm"};
+    const double h = std::ldexp(1.0, -level);
+    for (double t : times) table.rows.push_back({t, 10.0 * t, 20.0 * t, 0.2 * t + 0.08 * h * h * t, h});
+    return table;
+  };
+  const std::vector<output::HistoryTable> histories{history(0, {0.0, 0.5000000001}), history(1, {0.0, 0.5, 1.0}),
+                                                     history(2, {0.0, 0.5, 1.0})};
+  const HistoryBands bands = history_bands({0, 1, 2}, histories);
+  ASSERT_EQ(bands.rows.size(), 3u) << "one quantity at three times";
+  for (const auto& row : bands.rows) EXPECT_EQ(row.quantity, "critical_distance_log_strain");
+  EXPECT_EQ(bands.rows[0].estimate.behaviour, Behaviour::converged) << "all zero at t = 0";
+  const HistoryBandRow& half = bands.rows[1];
+  EXPECT_DOUBLE_EQ(half.time_s, 0.5);
+  ASSERT_EQ(half.estimate.behaviour, Behaviour::monotone);
+  EXPECT_NEAR(half.estimate.observed_order, 2.0, 1e-6);
+  EXPECT_NEAR(half.estimate.extrapolated, 0.1, 1e-9);
+  const double e21 = 0.08 * 0.5 * (0.25 - 0.0625);
+  EXPECT_NEAR(half.estimate.half_width, 1.25 * e21 / 3.0, 1e-10);
+  EXPECT_EQ(bands.rows[2].estimate.behaviour, Behaviour::incomplete) << "level 0 has no t = 1";
+  EXPECT_TRUE(std::isnan(bands.rows[2].values[0]));
+
+  const std::string csv = history_bands_csv(bands);
+  EXPECT_EQ(csv.substr(0, csv.find('\n')),
+            "quantity,time_s,f_level0,f_level1,f_level2,observed_order,f_extrapolated,gci_fine,band_low,band_high,note");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 4);
+  EXPECT_NE(csv.find("\ncritical_distance_log_strain,0.5,0.14,0.11,0.1025,2,0.1,"), std::string::npos) << csv;
 }
 
 }  // namespace

@@ -1,0 +1,86 @@
+// The error band of every history.csv quantity at every output time; see history_bands.hpp.
+#include "convergence/history_bands.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "sweep/sweep_table.hpp"
+
+namespace needlefem::convergence {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+bool is_quantity(const std::string& column) {
+  if (column == "time_s" || column == "steps" || column == "newton_iterations") return false;
+  for (const char* position : {"_x_mm", "_y_mm", "_z_mm"})
+    if (column.ends_with(position)) return false;
+  return true;
+}
+
+// The row of a history at time t (to 1e-9 s + 1e-7 t), or nullptr.
+const std::vector<double>* row_at(const output::HistoryTable& history, std::size_t time_column, double t) {
+  for (const auto& row : history.rows)
+    if (std::abs(row[time_column] - t) <= 1e-9 + 1e-7 * std::abs(t)) return &row;
+  return nullptr;
+}
+
+}  // namespace
+
+HistoryBands history_bands(const std::vector<int>& levels, const std::vector<output::HistoryTable>& histories,
+                           const Settings& settings) {
+  if (histories.size() < 3 || levels.size() != histories.size())
+    throw std::invalid_argument("history bands need three levels, each with its history");
+  HistoryBands bands;
+  bands.levels = levels;
+  const std::size_t n = histories.size();
+  const output::HistoryTable& finest = histories.back();
+  const std::size_t finest_time = finest.column("time_s");
+  std::vector<std::size_t> time_columns;
+  for (const auto& history : histories) time_columns.push_back(history.column("time_s"));
+
+  for (std::size_t q = 0; q < finest.columns.size(); ++q) {
+    const std::string& quantity = finest.columns[q];
+    if (!is_quantity(quantity)) continue;
+    for (const auto& finest_row : finest.rows) {
+      HistoryBandRow row;
+      row.quantity = quantity;
+      row.time_s = finest_row[finest_time];
+      for (std::size_t l = 0; l < n; ++l) {
+        const auto& columns = histories[l].columns;
+        const auto column = std::find(columns.begin(), columns.end(), quantity);
+        const std::vector<double>* at = row_at(histories[l], time_columns[l], row.time_s);
+        row.values.push_back(column != columns.end() && at ? (*at)[static_cast<std::size_t>(column - columns.begin())]
+                                                           : kNaN);
+      }
+      row.estimate = estimate(row.values[n - 3], row.values[n - 2], row.values[n - 1], settings);
+      bands.rows.push_back(std::move(row));
+    }
+  }
+  return bands;
+}
+
+std::string history_bands_csv(const HistoryBands& bands) {
+  std::vector<std::string> header{"quantity", "time_s"};
+  for (int level : bands.levels) header.push_back(fmt::format("f_level{}", level));
+  for (const char* column : {"observed_order", "f_extrapolated", "gci_fine", "band_low", "band_high", "note"})
+    header.emplace_back(column);
+  std::string text = fmt::format("{}\n", fmt::join(header, ","));
+  for (const auto& row : bands.rows) {
+    std::vector<std::string> fields{row.quantity, number_text(row.time_s)};
+    for (double v : row.values) fields.push_back(number_text(v));
+    const auto cells = estimate_cells(row.estimate);
+    fields.insert(fields.end(), cells.begin(), cells.end());
+    fields.push_back(row.estimate.note);
+    for (auto& field : fields) field = sweep::csv_field(field);
+    text += fmt::format("{}\n", fmt::join(fields, ","));
+  }
+  return text;
+}
+
+}  // namespace needlefem::convergence

@@ -1,0 +1,42 @@
+// The error band of every quantity of history.csv at every output time, from the same case run
+// at three or more consecutive mesh.refinement_level values (`needlefem converge`, which writes
+// it as converge_history.csv): grid_convergence.hpp's estimate on the three finest levels, time
+// by time. The summary's bands (convergence_report.hpp) judge one number per metric, its largest
+// value over the run; these say whether a curve's shape is resolved: that a value falls or rises
+// between two times by more than the bands of both.
+//
+// Quantities: every column of the finest level's history except time_s, the step and Newton
+// counters and the positions of the maxima (*_x_mm, *_y_mm, *_z_mm). Times: the finest level's
+// output times; a coarser level's value at the same time (to 1e-9 s + 1e-7 of the time), NaN
+// (an incomplete estimate) where it has none.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "convergence/grid_convergence.hpp"
+#include "output/history_table.hpp"
+
+namespace needlefem::convergence {
+
+struct HistoryBandRow {
+  std::string quantity;       // a history.csv column
+  double time_s = 0;
+  std::vector<double> values;  // per level, coarsest first (NaN when missing)
+  Estimate estimate;          // on the three finest levels
+};
+
+struct HistoryBands {
+  std::vector<int> levels;
+  std::vector<HistoryBandRow> rows;  // quantity by quantity, each in time order
+};
+
+// levels and histories in the same order, coarsest first, at least three.
+HistoryBands history_bands(const std::vector<int>& levels, const std::vector<output::HistoryTable>& histories,
+                           const Settings& settings = {});
+
+// Columns: quantity, time_s, f_level<L> per level, observed_order, f_extrapolated, gci_fine,
+// band_low, band_high, note.
+std::string history_bands_csv(const HistoryBands& bands);
+
+}  // namespace needlefem::convergence
