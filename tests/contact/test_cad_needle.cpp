@@ -2,10 +2,11 @@
 // independent references: distances to a sphere, a box and a cylinder in closed form, the grid
 // search against brute force, the edge rounding against the distance to a rounded box, the
 // normal's continuity across a rounded edge, and the gap spline (gap_spline.hpp): a cubic
-// reproduced exactly, a sphere's distance, the shaft as a prism, and a curvature that does not see
+// reproduced exactly (also with a node limit that grows its spacing), a sphere's distance, the shaft as a prism, and a curvature that does not see
 // the facets.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <map>
 #include <random>
@@ -260,6 +261,37 @@ TEST(GapSpline, ReproducesACubicExactly) {
     for (int i = 0; i < 9; ++i) EXPECT_NEAR(s->normal_gradient[i], hessian[i], 1e-10);
   }
   EXPECT_GT(answered, 200);
+}
+
+// A node limit that binds: the spacing grows until the grid fits, so the spline queries the gap
+// at no more nodes than the limit (and the coarse pass), still reproduces a cubic, and answers
+// farther from the surface (kTrustCells times the grown spacing); a limit below kMinNodeLimit is
+// refused.
+TEST(GapSpline, NodeLimitGrowsTheSpacing) {
+  auto p = [](const Point3& x) {
+    return 0.3 * (x[0] - 0.5) + 0.02 * std::pow(x[1] - 0.5, 3) + 0.01 * x[0] * x[1] * x[2] - 0.02 * x[2] * x[2];
+  };
+  const double h = 0.03;  // on the unit cube grown by the band and the stencil: 59³ = 205k nodes
+  std::atomic<long> queries{0};
+  auto counted = [&](const Point3& x) {
+    ++queries;
+    return p(x);
+  };
+  const GapSpline free_grid({0, 0, 0}, {1, 1, 1}, h, 0.0, false, 1e9, counted);
+  const long free_queries = queries.exchange(0);
+  const double limit = GapSpline::kMinNodeLimit;
+  const GapSpline capped({0, 0, 0}, {1, 1, 1}, h, 0.0, false, limit, counted);
+  EXPECT_GT(free_queries, 2 * limit);
+  EXPECT_LE(queries.load(), 1.05 * limit) << "every node and the coarse pass's every fourth";
+  // p = 0.087 here: beyond kTrustCells h = 0.075 of the requested spacing, within that of the
+  // grown one (the grid fits 1e5 nodes only from h = 0.047 on).
+  const Point3 x{0.8, 0.5, 0.5};
+  EXPECT_FALSE(free_grid.project(x).has_value());
+  const auto s = capped.project(x);
+  ASSERT_TRUE(s.has_value());
+  EXPECT_NEAR(s->gap, p(x), 1e-13);
+  EXPECT_NEAR(s->normal[0], 0.3 + 0.01 * x[1] * x[2], 1e-12);
+  EXPECT_THROW(GapSpline({0, 0, 0}, {1, 1, 1}, h, 0.0, false, 0.5 * limit, p), std::invalid_argument);
 }
 
 // A sphere's gap |x| - R: the spline against the closed form within its h⁴ interpolation error,

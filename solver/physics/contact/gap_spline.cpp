@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include <fmt/core.h>
+
 namespace needlefem::contact {
 
 namespace {
@@ -55,6 +57,8 @@ GapSpline::GapSpline(const Point3& lo, const Point3& hi, double spacing, double 
                      double max_nodes, const std::function<double(const Point3&)>& gap)
     : h_(spacing), prism_below_(prism_below) {
   if (!(spacing > 0.0)) throw std::invalid_argument("the gap spline's spacing must be positive");
+  if (!(max_nodes >= kMinNodeLimit))
+    throw std::invalid_argument(fmt::format("the gap spline's node limit {:g} is below {:g}", max_nodes, kMinNodeLimit));
   double band = 0.0;
   // The grid over [lo, hi] grown by the band and the stencil, for the spacing h_.
   auto lay_out = [&] {

@@ -39,12 +39,14 @@ class GapSpline {
  public:
   static constexpr double kBandCells = 8.0;  // B / h
   static constexpr double kTrustCells = 2.5;  // answered where |s| <= this times h (B - 3√3 h - margin)
+  static constexpr double kMinNodeLimit = 1e5;
 
   // Samples `gap` (thread-safe; the exact gap, > 0 outside) on the grid of spacing `spacing` that
   // covers the box [lo, hi] (the tip, rear face on z = 0) grown by the band and the stencil.
   // `prism_below`: the needle is a prism along z behind z = 0 (the shaft), deeper than the band
   // and the edge radius `edge_radius`. Where the grid would hold more than `max_nodes` nodes
-  // (8 bytes each) the spacing grows until it does not.
+  // (8 bytes each) the spacing grows until it does not; max_nodes below kMinNodeLimit is refused
+  // (std::invalid_argument): the band and the stencil alone take about 3e4 nodes at any spacing.
   GapSpline(const Point3& lo, const Point3& hi, double spacing, double edge_radius, bool prism_below,
             double max_nodes, const std::function<double(const Point3&)>& gap);
 
