@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -41,23 +42,28 @@ HistoryBands history_bands(const std::vector<int>& levels, const std::vector<out
   const std::size_t n = histories.size();
   const output::HistoryTable& finest = histories.back();
   const std::size_t finest_time = finest.column("time_s");
-  std::vector<std::size_t> time_columns;
-  for (const auto& history : histories) time_columns.push_back(history.column("time_s"));
+  // Each level's row at each of the finest level's times (nullptr where it has none).
+  std::vector<std::vector<const std::vector<double>*>> rows_at(n);
+  for (std::size_t l = 0; l < n; ++l) {
+    const std::size_t time_column = histories[l].column("time_s");
+    for (const auto& finest_row : finest.rows)
+      rows_at[l].push_back(row_at(histories[l], time_column, finest_row[finest_time]));
+  }
 
-  for (std::size_t q = 0; q < finest.columns.size(); ++q) {
-    const std::string& quantity = finest.columns[q];
+  for (const std::string& quantity : finest.columns) {
     if (!is_quantity(quantity)) continue;
-    for (const auto& finest_row : finest.rows) {
+    std::vector<std::optional<std::size_t>> columns;
+    for (const auto& history : histories) {
+      const auto found = std::find(history.columns.begin(), history.columns.end(), quantity);
+      if (found == history.columns.end()) columns.emplace_back();
+      else columns.emplace_back(static_cast<std::size_t>(found - history.columns.begin()));
+    }
+    for (std::size_t t = 0; t < finest.rows.size(); ++t) {
       HistoryBandRow row;
       row.quantity = quantity;
-      row.time_s = finest_row[finest_time];
-      for (std::size_t l = 0; l < n; ++l) {
-        const auto& columns = histories[l].columns;
-        const auto column = std::find(columns.begin(), columns.end(), quantity);
-        const std::vector<double>* at = row_at(histories[l], time_columns[l], row.time_s);
-        row.values.push_back(column != columns.end() && at ? (*at)[static_cast<std::size_t>(column - columns.begin())]
-                                                           : kNaN);
-      }
+      row.time_s = finest.rows[t][finest_time];
+      for (std::size_t l = 0; l < n; ++l)
+        row.values.push_back(columns[l] && rows_at[l][t] ? (*rows_at[l][t])[*columns[l]] : kNaN);
       row.estimate = estimate(row.values[n - 3], row.values[n - 2], row.values[n - 1], settings);
       bands.rows.push_back(std::move(row));
     }
