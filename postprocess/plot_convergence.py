@@ -33,13 +33,13 @@ def finite(x):
     return x is not None and math.isfinite(x)
 
 
-def draw_limit(ax, limit, shown):
+def draw_limit(ax, limit, shown, squash=10):
     """The limit as a dashed line; when drawing it would squash the shown values more than
-    tenfold, only in the legend, saying where it lies."""
+    `squash` times, only in the legend, saying where it lies."""
     shown = [v for v in shown if finite(v)]
     low, high = (min(shown), max(shown)) if shown else (limit, limit)
     span = max(high - low, 0.05 * abs(high), 1e-300)
-    if max(high, limit) - min(low, limit) <= 10 * span:
+    if max(high, limit) - min(low, limit) <= squash * span:
         ax.axhline(limit, color="C3", linestyle="--", label=f"limit {limit:g}")
     else:
         ax.plot([], [], color="C3", linestyle="--", label=f"limit {limit:g} ({'above' if limit > high else 'below'}, off scale)")
@@ -88,7 +88,8 @@ def plot_history(args, report):
         low, high = [number(r["band_low"]) for r in series], [number(r["band_high"]) for r in series]
         ax.fill_between(times, low, high, color="C0", alpha=0.25, label="GCI band (finest)")
         if quantity in limit_of:
-            draw_limit(ax, limit_of[quantity], low + high)
+            # A curve's shape is the point here: the line only where it leaves the curve readable.
+            draw_limit(ax, limit_of[quantity], low + high, squash=2)
         ax.set_title(quantity, fontsize=9)
         ax.set_xlabel("time (s)")
         ax.legend(fontsize=7)
