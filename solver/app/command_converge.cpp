@@ -77,22 +77,24 @@ void converge_command(const ConvergeOptions& options) {
   sweep::write_file_atomically(run.out_dir / "converge.json", convergence::report_json(report).dump(2) + "\n");
   sweep::write_file_atomically(run.out_dir / "converge.csv", convergence::report_csv(report));
 
+  const std::filesystem::path history_bands_file = run.out_dir / "converge_history.csv";
   const auto failed = std::find_if(levels.begin(), levels.end(), [](const auto& l) { return l.status != "completed"; });
-  if (failed == levels.end()) {
-    std::vector<int> numbers;
-    std::vector<output::HistoryTable> histories;
-    for (const auto& level : levels) {
-      numbers.push_back(level.level);
-      histories.push_back(output::read_history_table(run.out_dir / level.directory / "history.csv"));
-    }
-    sweep::write_file_atomically(run.out_dir / "converge_history.csv",
-                                 convergence::history_bands_csv(convergence::history_bands(numbers, histories)));
-  }
-  if (failed != levels.end())
+  if (failed != levels.end()) {
+    // Bands over time need every level's history: none, rather than an earlier start's.
+    std::filesystem::remove(history_bands_file);
     throw std::runtime_error(fmt::format("converge: level {} {}: {} (see {}); partial results in {}", failed->level,
                                          failed->status, failed->error.empty() ? "no summary" : failed->error,
                                          (run.out_dir / failed->directory / "run.log").string(),
                                          (run.out_dir / "converge.json").string()));
+  }
+  std::vector<int> numbers;
+  std::vector<output::HistoryTable> histories;
+  for (const auto& level : levels) {
+    numbers.push_back(level.level);
+    histories.push_back(output::read_history_table(run.out_dir / level.directory / "history.csv"));
+  }
+  sweep::write_file_atomically(history_bands_file,
+                               convergence::history_bands_csv(convergence::history_bands(numbers, histories)));
   for (const auto& warning : report.warnings) fmt::print("converge: warning: {}\n", warning);
   if (const std::string line = convergence::coarser_band_line(report); !line.empty()) fmt::print("{}\n", line);
   // Refinement halves the sizes near the needle only: a coarse core stays coarse at every level.

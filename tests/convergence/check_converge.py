@@ -7,7 +7,8 @@ verdict per limit; the block's max log strain ln 1.2 passes the 0.19 limit; a se
 nothing (resumed) and gives the same report; postprocess/plot_convergence.py writes the two PNGs; --levels 4
 runs level 3 alone and checks each band of levels 0-2 against level 3's value.
 With --failing-case (a case whose run fails): converge exits non-zero with one stderr line naming
-level 0 and the reason, and still writes converge.json and converge.csv.
+level 0 and the reason, still writes converge.json and converge.csv, and leaves no
+converge_history.csv (not even an earlier start's).
 With --coarse-tip (a brain-tip case, run on a coarse linear mesh with tied contact): the last line
 gives the verdict and warns that the mesh is coarser than the converged setting.
 
@@ -141,6 +142,9 @@ check(strain4 is not None and abs(float(strain4["f_level3"]) - math.log(1.2)) < 
 if args.failing_case:
     out = args.out.parent / (args.out.name + "_failing")
     shutil.rmtree(out, ignore_errors=True)
+    out.mkdir(parents=True)
+    stale = out / "converge_history.csv"
+    stale.write_text("quantity,time_s\n")  # as an earlier, complete start would have left it
     run = subprocess.run([args.exe, "converge", args.failing_case, "--out", str(out), "--jobs", "2"],
                          capture_output=True, text=True)
     lines = [line for line in run.stderr.splitlines() if line.strip()]
@@ -149,6 +153,7 @@ if args.failing_case:
     check(len(lines) == 1 and "converge: level 0 failed:" in lines[0], f"one stderr line naming level 0: {lines}")
     partial = out / "converge.json"
     check(partial.exists() and (out / "converge.csv").exists(), "converge.json and converge.csv still written")
+    check(not stale.exists(), "no converge_history.csv: the bands over time need every level's history")
     if partial.exists():
         levels = json.loads(partial.read_text())["levels"]
         check(levels[0]["status"] == "failed" and levels[0].get("error"), f"level 0 recorded as failed: {levels[0]}")
