@@ -1,7 +1,6 @@
 // The error band of every history.csv quantity at every output time; see history_bands.hpp.
 #include "convergence/history_bands.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -53,11 +52,7 @@ HistoryBands history_bands(const std::vector<int>& levels, const std::vector<out
   for (const std::string& quantity : finest.columns) {
     if (!is_quantity(quantity)) continue;
     std::vector<std::optional<std::size_t>> columns;
-    for (const auto& history : histories) {
-      const auto found = std::find(history.columns.begin(), history.columns.end(), quantity);
-      if (found == history.columns.end()) columns.emplace_back();
-      else columns.emplace_back(static_cast<std::size_t>(found - history.columns.begin()));
-    }
+    for (const auto& history : histories) columns.push_back(history.find_column(quantity));
     for (std::size_t t = 0; t < finest.rows.size(); ++t) {
       HistoryBandRow row;
       row.quantity = quantity;

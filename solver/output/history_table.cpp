@@ -25,10 +25,16 @@ std::vector<std::string> split_csv(const std::string& line) {
 
 }  // namespace
 
-std::size_t HistoryTable::column(const std::string& name) const {
+std::optional<std::size_t> HistoryTable::find_column(const std::string& name) const {
   const auto it = std::find(columns.begin(), columns.end(), name);
-  if (it == columns.end()) throw std::runtime_error(fmt::format("{}: no column '{}'", file, name));
+  if (it == columns.end()) return std::nullopt;
   return static_cast<std::size_t>(it - columns.begin());
+}
+
+std::size_t HistoryTable::column(const std::string& name) const {
+  const auto index = find_column(name);
+  if (!index) throw std::runtime_error(fmt::format("{}: no column '{}'", file, name));
+  return *index;
 }
 
 HistoryTable read_history_table(const std::filesystem::path& csv) {

@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,8 @@ struct HistoryTable {
   std::vector<std::string> columns;
   std::vector<std::vector<double>> rows;  // an empty cell is NaN (a quantity not computed at that time)
 
+  // The index of a column, if the table has it.
+  std::optional<std::size_t> find_column(const std::string& name) const;
   // The index of a column; throws std::runtime_error "FILE: no column 'NAME'".
   std::size_t column(const std::string& name) const;
 };
