@@ -16,13 +16,6 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-bool is_quantity(const std::string& column) {
-  if (column == "time_s" || column == "steps" || column == "newton_iterations") return false;
-  for (const char* position : {"_x_mm", "_y_mm", "_z_mm"})
-    if (column.ends_with(position)) return false;
-  return true;
-}
-
 // The row of a history at time t (to 1e-9 s + 1e-7 t), or nullptr.
 const std::vector<double>* row_at(const output::HistoryTable& history, std::size_t time_column, double t) {
   for (const auto& row : history.rows)
@@ -50,7 +43,7 @@ HistoryBands history_bands(const std::vector<int>& levels, const std::vector<out
   }
 
   for (const std::string& quantity : finest.columns) {
-    if (!is_quantity(quantity)) continue;
+    if (!output::is_history_quantity(quantity)) continue;
     std::vector<std::optional<std::size_t>> columns;
     for (const auto& history : histories) columns.push_back(history.find_column(quantity));
     for (std::size_t t = 0; t < finest.rows.size(); ++t) {

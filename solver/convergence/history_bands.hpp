@@ -5,10 +5,10 @@
 // value over the run; these say whether a curve's shape is resolved: that a value falls or rises
 // between two times by more than the bands of both.
 //
-// Quantities: every column of the finest level's history except time_s, the step and Newton
-// counters and the positions of the maxima (*_x_mm, *_y_mm, *_z_mm). Times: the finest level's
-// output times; a coarser level's value at the same time (to 1e-9 s + 1e-7 of the time), NaN
-// (an incomplete estimate) where it has none.
+// Quantities: every column of the finest level's history that output::is_history_quantity counts
+// as one: not time_s, the step and Newton counters or the positions of located values (*_x_mm,
+// *_y_mm, *_z_mm). Times: the finest level's output times; a coarser level's value at the same
+// time (to 1e-9 s + 1e-7 of the time), NaN (an incomplete estimate) where it has none.
 #pragma once
 
 #include <string>

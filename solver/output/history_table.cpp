@@ -23,7 +23,23 @@ std::vector<std::string> split_csv(const std::string& line) {
   return fields;
 }
 
+constexpr std::array<const char*, 3> kPositionSuffixes{"_x_mm", "_y_mm", "_z_mm"};
+
 }  // namespace
+
+std::string history_position_columns(const std::string& name) {
+  std::string columns;
+  for (const char* suffix : kPositionSuffixes) columns += fmt::format(",{}{}", name, suffix);
+  return columns;
+}
+
+bool is_history_quantity(const std::string& column) {
+  for (const char* counter : kHistoryCounterColumns)
+    if (column == counter) return false;
+  for (const char* suffix : kPositionSuffixes)
+    if (column.ends_with(suffix)) return false;
+  return true;
+}
 
 std::optional<std::size_t> HistoryTable::find_column(const std::string& name) const {
   const auto it = std::find(columns.begin(), columns.end(), name);

@@ -1,7 +1,9 @@
-// history.csv of a `needlefem run` read back: its header and one row of numbers per output time
-// (run/run_case.cpp writes it; time_s is the first column).
+// history.csv of a `needlefem run`: the names of its columns that are not quantities, which its
+// writers (run/run_case.cpp, run/safety_report.cpp) use, and the file read back: its header and
+// one row of numbers per output time (time_s is the first column).
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <filesystem>
 #include <optional>
@@ -9,6 +11,15 @@
 #include <vector>
 
 namespace needlefem::output {
+
+// The first columns of every history.csv: the output time and the integrator's counters so far.
+inline constexpr std::array<const char*, 3> kHistoryCounterColumns{"time_s", "steps", "newton_iterations"};
+
+// ",NAME_x_mm,NAME_y_mm,NAME_z_mm": the reference position columns of a located value NAME.
+std::string history_position_columns(const std::string& name);
+
+// Whether a column holds a quantity: not the time, a counter or a position.
+bool is_history_quantity(const std::string& column);
 
 struct HistoryTable {
   std::string file;

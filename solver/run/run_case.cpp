@@ -15,6 +15,7 @@
 #include <stdexcept>
 
 #include <fmt/core.h>
+#include <fmt/format.h>
 
 #include "case/case.hpp"
 #include "case/mesh_resolution.hpp"
@@ -26,6 +27,7 @@
 #include "interrupt/interrupt_guard.hpp"
 #include "io_errors/io_errors.hpp"
 #include "model/scene_model.hpp"
+#include "output/history_table.hpp"
 #include "output/result_file.hpp"
 #include "output/xdmf_text.hpp"
 #include "physics/fields/tissue_fields.hpp"
@@ -128,9 +130,11 @@ class HistoryCsv {
              const std::string& extra_header)
       : file_(file), stream_(file) {
     if (!stream_) throw std::runtime_error(fmt::format("{}: cannot write: {}", file.string(), io::system_reason(errno)));
-    stream_ << "time_s,steps,newton_iterations";
-    for (const auto& q : fields::scalar_quantities())
-      stream_ << fmt::format(",max_{0},max_{0}_x_mm,max_{0}_y_mm,max_{0}_z_mm", q.name);
+    stream_ << fmt::format("{}", fmt::join(output::kHistoryCounterColumns, ","));
+    for (const auto& q : fields::scalar_quantities()) {
+      const std::string name = std::string("max_") + q.name;
+      stream_ << "," << name << output::history_position_columns(name);
+    }
     for (const auto& s : surfaces) stream_ << fmt::format(",reaction_{0}_x_n,reaction_{0}_y_n,reaction_{0}_z_n", s);
     stream_ << ",elastic_energy_j,kinetic_energy_j" << extra_header << "\n";
   }

@@ -7,6 +7,7 @@
 
 #include "case/mesh_resolution.hpp"
 #include "case/specs/thresholds_spec.hpp"
+#include "output/history_table.hpp"
 
 namespace needlefem::run {
 
@@ -183,10 +184,9 @@ void SafetyReport::keep_maximum(std::size_t i, double t, const Now& now, const s
 std::string SafetyReport::history_header() const {
   std::string header;
   for (const Limit& limit : limits_)
-    header += fmt::format(
-        ",critical_distance_{0},critical_distance_{0}_x_mm,critical_distance_{0}_y_mm,critical_distance_{0}_z_mm,"
-        "volume_above_{0}_mm3,region_fraction_above_{0},percentile_{0}{1}",
-        limit.name, limit.windowed ? fmt::format(",critical_distance_instantaneous_{}", limit.name) : "");
+    header += fmt::format(",critical_distance_{0}{1},volume_above_{0}_mm3,region_fraction_above_{0},percentile_{0}{2}",
+                          limit.name, output::history_position_columns(std::string("critical_distance_") + limit.name),
+                          limit.windowed ? fmt::format(",critical_distance_instantaneous_{}", limit.name) : "");
   return header;
 }
 

@@ -1,5 +1,5 @@
-// output/history_table.hpp: history.csv read back, and its one-line errors naming file, line
-// and column.
+// output/history_table.hpp: history.csv's columns that are not quantities, the file read back,
+// and its one-line errors naming file, line and column.
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -41,6 +41,16 @@ TEST(HistoryTable, ReadsColumnsAndRows) {
   EXPECT_GT(table.rows[1][3], 0.0) << "a subnormal value is read, not refused";
   EXPECT_EQ(table.file, path.string());
   EXPECT_THROW(table.column("max_log_strain"), std::runtime_error);
+}
+
+TEST(HistoryTable, CountersAndPositionsAreNotQuantities) {
+  EXPECT_EQ(history_position_columns("max_log_strain"), ",max_log_strain_x_mm,max_log_strain_y_mm,max_log_strain_z_mm");
+  for (const char* column : {"time_s", "steps", "newton_iterations", "max_log_strain_x_mm", "max_log_strain_y_mm",
+                             "critical_distance_von_mises_z_mm"})
+    EXPECT_FALSE(is_history_quantity(column)) << column;
+  for (const char* column : {"max_log_strain", "critical_distance_von_mises", "volume_above_log_strain_mm3",
+                             "needle_force_x_n", "elastic_energy_j"})
+    EXPECT_TRUE(is_history_quantity(column)) << column;
 }
 
 TEST(HistoryTable, BadFilesGiveOneLineNamingTheFault) {
