@@ -111,7 +111,7 @@ void add_converge_command(CLI::App& app) {
       "element sizes near the needle), then per summary metric the observed order, Richardson value and grid "
       "convergence index (GCI, Celik et al. 2008); converge.csv + converge.json and a pass/fail/undecided verdict "
       "per safety limit (decided by the critical-distance value when the run reports one); converge_history.csv, "
-      "the band of every history.csv quantity at every output time. Resumes: finished "
+      "the band of every history.csv quantity at every output time and of its change since its peak. Resumes: finished "
       "levels are not run again; each level's run is in OUT/level_<L>/, and postprocess/plot_convergence.py OUT draws "
       "the bands. Options after `--` go to every run.");
   auto options = std::make_shared<ConvergeOptions>();

@@ -1,6 +1,7 @@
 // The error band of every history.csv quantity at every output time; see history_bands.hpp.
 #include "convergence/history_bands.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -23,7 +24,24 @@ const std::vector<double>* row_at(const output::HistoryTable& history, std::size
   return nullptr;
 }
 
+// The time of the largest finite |value| of a quantity's rows, or NaN.
+double peak_time(const std::vector<HistoryBandRow>& rows) {
+  double peak = kNaN, largest = -1.0;
+  for (const auto& row : rows) {
+    const double value = std::abs(row.values.back());
+    if (std::isfinite(value) && value > largest) largest = value, peak = row.time_s;
+  }
+  return peak;
+}
+
 }  // namespace
+
+const char* change_resolution(const HistoryBandRow& row) {
+  if (row.time_s == row.peak_time_s || row.change.behaviour == Behaviour::incomplete) return "";
+  if (row.change.band_high < 0.0) return "below";
+  if (row.change.band_low > 0.0) return "above";
+  return "within band";
+}
 
 HistoryBands history_bands(const std::vector<int>& levels, const std::vector<output::HistoryTable>& histories,
                            const Settings& settings) {
@@ -46,6 +64,7 @@ HistoryBands history_bands(const std::vector<int>& levels, const std::vector<out
     if (!output::is_history_quantity(quantity)) continue;
     std::vector<std::optional<std::size_t>> columns;
     for (const auto& history : histories) columns.push_back(history.find_column(quantity));
+    std::vector<HistoryBandRow> rows;
     for (std::size_t t = 0; t < finest.rows.size(); ++t) {
       HistoryBandRow row;
       row.quantity = quantity;
@@ -53,6 +72,15 @@ HistoryBands history_bands(const std::vector<int>& levels, const std::vector<out
       for (std::size_t l = 0; l < n; ++l)
         row.values.push_back(columns[l] && rows_at[l][t] ? (*rows_at[l][t])[*columns[l]] : kNaN);
       row.estimate = estimate(row.values[n - 3], row.values[n - 2], row.values[n - 1], settings);
+      rows.push_back(std::move(row));
+    }
+    const double peak = peak_time(rows);
+    const auto at_peak = std::find_if(rows.begin(), rows.end(), [&](const auto& row) { return row.time_s == peak; });
+    const std::vector<double> peak_values = at_peak == rows.end() ? std::vector<double>(n, kNaN) : at_peak->values;
+    for (auto& row : rows) {
+      row.peak_time_s = peak;
+      for (std::size_t l = 0; l < n; ++l) row.changes.push_back(row.values[l] - peak_values[l]);
+      row.change = estimate(row.changes[n - 3], row.changes[n - 2], row.changes[n - 1], settings);
       bands.rows.push_back(std::move(row));
     }
   }
@@ -62,7 +90,9 @@ HistoryBands history_bands(const std::vector<int>& levels, const std::vector<out
 std::string history_bands_csv(const HistoryBands& bands) {
   std::vector<std::string> header{"quantity", "time_s"};
   for (int level : bands.levels) header.push_back(fmt::format("f_level{}", level));
-  for (const char* column : {"observed_order", "f_extrapolated", "gci_fine", "band_low", "band_high", "note"})
+  for (const char* column : {"observed_order", "f_extrapolated", "gci_fine", "band_low", "band_high", "note",
+                             "peak_time_s", "change_since_peak", "change_band_low", "change_band_high",
+                             "change_resolution"})
     header.emplace_back(column);
   std::string text = fmt::format("{}\n", fmt::join(header, ","));
   for (const auto& row : bands.rows) {
@@ -71,6 +101,9 @@ std::string history_bands_csv(const HistoryBands& bands) {
     const auto cells = estimate_cells(row.estimate);
     fields.insert(fields.end(), cells.begin(), cells.end());
     fields.push_back(row.estimate.note);
+    for (double v : {row.peak_time_s, row.changes.back(), row.change.band_low, row.change.band_high})
+      fields.push_back(number_text(v));
+    fields.emplace_back(change_resolution(row));
     for (auto& field : fields) field = sweep::csv_field(field);
     text += fmt::format("{}\n", fmt::join(fields, ","));
   }

@@ -5,6 +5,13 @@
 // value over the run; these say whether a curve's shape is resolved: that a value falls or rises
 // between two times by more than the bands of both.
 //
+// A curve's shape, such as paper 001's slow case relaxing after its peak, is a change between
+// two times, and is judged by the band of that change, not by comparing the two times' bands:
+// each row also estimates each level's change since the quantity's peak (its value at the row's
+// time less its value at the output time of the finest level's largest |value|, the same time on
+// every level) with the same procedure. Where a level's error is alike at both times the change
+// is better resolved than either value, and where it is not, its band says so.
+//
 // Quantities: every column of the finest level's history that output::is_history_quantity counts
 // as one: not time_s, the step and Newton counters or the positions of located values (*_x_mm,
 // *_y_mm, *_z_mm). Times: the finest level's output times; a coarser level's value at the same
@@ -24,7 +31,15 @@ struct HistoryBandRow {
   double time_s = 0;
   std::vector<double> values;  // per level, coarsest first (NaN when missing)
   Estimate estimate;          // on the three finest levels
+  double peak_time_s = 0;     // the finest level's time of the largest |value| (NaN when it has none)
+  std::vector<double> changes;  // per level: the value less the value at peak_time_s
+  Estimate change;            // on the three finest levels' changes
 };
+
+// "below" or "above" (the value at the peak time, resolved) when the change's band lies wholly
+// below or above zero, "within band" when it holds zero, "" at the peak time itself and where
+// the change is incomplete.
+const char* change_resolution(const HistoryBandRow& row);
 
 struct HistoryBands {
   std::vector<int> levels;
@@ -36,7 +51,8 @@ HistoryBands history_bands(const std::vector<int>& levels, const std::vector<out
                            const Settings& settings = {});
 
 // Columns: quantity, time_s, f_level<L> per level, observed_order, f_extrapolated, gci_fine,
-// band_low, band_high, note.
+// band_low, band_high, note; then peak_time_s, change_since_peak (the finest level's),
+// change_band_low, change_band_high and change_resolution.
 std::string history_bands_csv(const HistoryBands& bands);
 
 }  // namespace needlefem::convergence

@@ -2,7 +2,7 @@
 """`needlefem converge` end to end on a tiny homogeneous block (tests/convergence/block_short.toml):
 exit 0, a level folder with a completed summary per level (its case with the --set override), converge.csv with the documented
 columns and one row per metric, converge_history.csv with each level's history value and a band
-per quantity and output time, converge.json with three levels (tets, dofs, wall time) and a
+per quantity and output time, and the band of its change since the peak, converge.json with three levels (tets, dofs, wall time) and a
 verdict per limit; the block's max log strain ln 1.2 passes the 0.19 limit; a second start runs
 nothing (resumed) and gives the same report; postprocess/plot_convergence.py writes the two PNGs; --levels 4
 runs level 3 alone and checks each band of levels 0-2 against level 3's value.
@@ -76,7 +76,8 @@ check(strain is not None and strain["verdict"] == "pass" and float(strain["band_
 with open(args.out / "converge_history.csv") as f:
     history_rows = list(csv.DictReader(f))
 check(history_rows and list(history_rows[0].keys()) == ["quantity", "time_s", "f_level0", "f_level1", "f_level2"]
-      + expected[6:11] + ["note"], f"converge_history.csv columns {list(history_rows[0].keys()) if history_rows else None}")
+      + expected[6:11] + ["note", "peak_time_s", "change_since_peak", "change_band_low", "change_band_high",
+                          "change_resolution"], f"converge_history.csv columns {list(history_rows[0].keys()) if history_rows else None}")
 histories = []
 for level in range(3):
     with open(args.out / f"level_{level}" / "history.csv") as f:
@@ -93,6 +94,16 @@ final_strain = [r for r in history_rows if r["quantity"] == "max_log_strain"][-1
 check(abs(float(final_strain["f_level2"]) - math.log(1.2)) < 1e-3 and float(final_strain["band_low"])
       <= float(final_strain["f_level2"]) <= float(final_strain["band_high"]),
       f"max_log_strain at the last time is ln 1.2 inside its band: {final_strain}")
+
+# The change since the peak: the block's strain grows to ln 1.2 at the last time, so at t = 0.5 it
+# is ln 1.1 - ln 1.2 below it on every level, resolved; none at the peak itself.
+strain_rows = [r for r in history_rows if r["quantity"] == "max_log_strain"]
+half = [r for r in strain_rows if abs(float(r["time_s"]) - 0.5) < 1e-9]
+check(strain_rows and all(float(r["peak_time_s"]) == float(strain_rows[-1]["time_s"]) for r in strain_rows)
+      and strain_rows[-1]["change_resolution"] == "" and len(half) == 1
+      and abs(float(half[0]["change_since_peak"]) - math.log(1.1 / 1.2)) < 1e-3
+      and float(half[0]["change_band_high"]) < 0 and half[0]["change_resolution"] == "below",
+      f"max_log_strain at t = 0.5 is ln 1.1 - ln 1.2 below its peak, resolved: {half}")
 
 report = json.loads((args.out / "converge.json").read_text())
 check([level["level"] for level in report["levels"]] == [0, 1, 2], "converge.json has levels 0, 1, 2")

@@ -259,9 +259,48 @@ TEST(HistoryBands, BandAtEveryOutputTime) {
 
   const std::string csv = history_bands_csv(bands);
   EXPECT_EQ(csv.substr(0, csv.find('\n')),
-            "quantity,time_s,f_level0,f_level1,f_level2,observed_order,f_extrapolated,gci_fine,band_low,band_high,note");
+            "quantity,time_s,f_level0,f_level1,f_level2,observed_order,f_extrapolated,gci_fine,band_low,band_high,note,"
+            "peak_time_s,change_since_peak,change_band_low,change_band_high,change_resolution");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 4);
   EXPECT_NE(csv.find("\ncritical_distance_log_strain,0.5,0.14,0.11,0.1025,2,0.1,"), std::string::npos) << csv;
+}
+
+// A curve that falls after its peak at t = 0.1, on h = 1, 1/2, 1/4: f = g(t) + a(t) h², with
+// g = 1.0, 0.96, 0.95 and a = 0.4, 0.4, 0.6. At t = 0.2 the two times' bands overlap, but every
+// level's error is the same at both times, so the change since the peak is mesh-independent:
+// -0.04, resolved below the peak. At t = 0.3 the change's error is 0.2 h², order 2, and its band by hand
+// is -0.0375 +- 1.25 (0.05 - 0.0125) / 3.
+TEST(HistoryBands, ChangeSincePeakHasItsOwnBand) {
+  const std::vector<double> times{0.1, 0.2, 0.3}, g{1.0, 0.96, 0.95}, a{0.4, 0.4, 0.6};
+  std::vector<output::HistoryTable> histories;
+  for (int level = 0; level < 3; ++level) {
+    output::HistoryTable table;
+    table.columns = {"time_s", "critical_distance_strain_rate_per_s"};
+    const double h = std::ldexp(1.0, -level);
+    for (std::size_t t = 0; t < times.size(); ++t) table.rows.push_back({times[t], g[t] + a[t] * h * h});
+    histories.push_back(std::move(table));
+  }
+  const HistoryBands bands = history_bands({0, 1, 2}, histories);
+  ASSERT_EQ(bands.rows.size(), 3u);
+  for (const auto& row : bands.rows) EXPECT_DOUBLE_EQ(row.peak_time_s, 0.1);
+  EXPECT_STREQ(change_resolution(bands.rows[0]), "") << "the peak itself";
+  const HistoryBandRow& overlap = bands.rows[1];
+  EXPECT_GT(overlap.estimate.band_high, bands.rows[0].estimate.band_low) << "the two times' bands overlap";
+  EXPECT_EQ(overlap.change.behaviour, Behaviour::converged);
+  EXPECT_NEAR(overlap.changes.back(), -0.04, 1e-12);
+  EXPECT_STREQ(change_resolution(overlap), "below");
+  const HistoryBandRow& later = bands.rows[2];
+  ASSERT_EQ(later.change.behaviour, Behaviour::monotone);
+  EXPECT_NEAR(later.change.observed_order, 2.0, 1e-9);
+  EXPECT_NEAR(later.change.band_low, -0.0375 - 1.25 * 0.0375 / 3.0, 1e-12);
+  EXPECT_NEAR(later.change.band_high, -0.0375 + 1.25 * 0.0375 / 3.0, 1e-12);
+  EXPECT_STREQ(change_resolution(later), "below");
+  // A change that its band cannot tell from zero.
+  HistoryBandRow unclear = later;
+  unclear.change = estimate(0.01, -0.01, 0.005);
+  EXPECT_STREQ(change_resolution(unclear), "within band");
+  const std::string csv = history_bands_csv(bands);
+  EXPECT_NE(csv.find(",0.1,-0.04,-0.04,-0.04,below\n"), std::string::npos) << csv;
 }
 
 }  // namespace
