@@ -9,7 +9,9 @@ Reads DIR/converge.json (written by solver/convergence/convergence_report.cpp; t
 draws it, the estimates are the C++ module's) and writes DIR/convergence.png. When the folder has
 DIR/converge_history.csv (solver/convergence/history_bands.cpp), also DIR/convergence_history.png:
 the limited quantities against time, each level's curve and the band around the finest at every
-output time, with the limit line: whether a rise or a fall of a curve is larger than its bands.
+output time, with the limit line; below each, the quantity's change since its peak time with
+the band of that change and the zero line: where the band leaves zero, the fall (or rise) from
+the peak is resolved.
 
 usage: /usr/bin/python3 postprocess/plot_convergence.py DIR [--png OUT.png] [--all] [--history Q,Q,...]
   --all      also the metrics without a limit (needle loads, volumes above a limit, ...)
@@ -76,8 +78,9 @@ def plot_history(args, report):
     if not quantities:
         return None
     level_columns = [c for c in rows[0] if c.startswith("f_level")]
-    fig, axes = plt.subplots(1, len(quantities), figsize=(4.6 * len(quantities), 3.6), squeeze=False)
-    for ax, quantity in zip(axes.flat, quantities):
+    fig, axes = plt.subplots(2, len(quantities), figsize=(4.6 * len(quantities), 6.6), squeeze=False,
+                             sharex="col")
+    for ax, change_ax, quantity in zip(axes[0], axes[1], quantities):
         series = [r for r in rows if r["quantity"] == quantity]
         times = [number(r["time_s"]) for r in series]
         for i, column in enumerate(level_columns):
@@ -91,8 +94,16 @@ def plot_history(args, report):
             # A curve's shape is the point here: the line only where it leaves the curve readable.
             draw_limit(ax, limit_of[quantity], low + high, squash=2)
         ax.set_title(quantity, fontsize=9)
-        ax.set_xlabel("time (s)")
         ax.legend(fontsize=7)
+        change = [number(r["change_since_peak"]) for r in series]
+        change_ax.plot(times, change, "o-", markersize=3, color="C0", label="finest level")
+        change_ax.fill_between(times, [number(r["change_band_low"]) for r in series],
+                               [number(r["change_band_high"]) for r in series], color="C0", alpha=0.25,
+                               label="GCI band of the change")
+        change_ax.axhline(0.0, color="k", linewidth=0.8)
+        change_ax.set_title(f"change since the peak at t = {number(series[0]['peak_time_s']):g} s", fontsize=9)
+        change_ax.set_xlabel("time (s)")
+        change_ax.legend(fontsize=7)
     fig.tight_layout()
     out = args.dir / "convergence_history.png"
     fig.savefig(out, dpi=120)

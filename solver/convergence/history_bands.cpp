@@ -1,7 +1,6 @@
 // The error band of every history.csv quantity at every output time; see history_bands.hpp.
 #include "convergence/history_bands.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -24,12 +23,13 @@ const std::vector<double>* row_at(const output::HistoryTable& history, std::size
   return nullptr;
 }
 
-// The time of the largest finite |value| of a quantity's rows, or NaN.
-double peak_time(const std::vector<HistoryBandRow>& rows) {
-  double peak = kNaN, largest = -1.0;
-  for (const auto& row : rows) {
-    const double value = std::abs(row.values.back());
-    if (std::isfinite(value) && value > largest) largest = value, peak = row.time_s;
+// The row of a quantity's largest finite |value| on the finest level, or rows.size() if none.
+std::size_t peak_row(const std::vector<HistoryBandRow>& rows) {
+  std::size_t peak = rows.size();
+  double largest = -1.0;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const double value = std::abs(rows[i].values.back());
+    if (std::isfinite(value) && value > largest) largest = value, peak = i;
   }
   return peak;
 }
@@ -74,11 +74,11 @@ HistoryBands history_bands(const std::vector<int>& levels, const std::vector<out
       row.estimate = estimate(row.values[n - 3], row.values[n - 2], row.values[n - 1], settings);
       rows.push_back(std::move(row));
     }
-    const double peak = peak_time(rows);
-    const auto at_peak = std::find_if(rows.begin(), rows.end(), [&](const auto& row) { return row.time_s == peak; });
-    const std::vector<double> peak_values = at_peak == rows.end() ? std::vector<double>(n, kNaN) : at_peak->values;
+    const std::size_t peak = peak_row(rows);
+    const double peak_time = peak < rows.size() ? rows[peak].time_s : kNaN;
+    const std::vector<double> peak_values = peak < rows.size() ? rows[peak].values : std::vector<double>(n, kNaN);
     for (auto& row : rows) {
-      row.peak_time_s = peak;
+      row.peak_time_s = peak_time;
       for (std::size_t l = 0; l < n; ++l) row.changes.push_back(row.values[l] - peak_values[l]);
       row.change = estimate(row.changes[n - 3], row.changes[n - 2], row.changes[n - 1], settings);
       bands.rows.push_back(std::move(row));
