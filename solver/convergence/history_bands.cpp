@@ -77,10 +77,10 @@ HistoryBands history_bands(const std::vector<int>& levels, const std::vector<out
     const std::size_t peak = peak_row(rows);
     const double peak_time = peak < rows.size() ? rows[peak].time_s : kNaN;
     const std::vector<double> peak_values = peak < rows.size() ? rows[peak].values : std::vector<double>(n, kNaN);
+    const auto change = [&](const HistoryBandRow& row, std::size_t l) { return row.values[l] - peak_values[l]; };
     for (auto& row : rows) {
       row.peak_time_s = peak_time;
-      for (std::size_t l = 0; l < n; ++l) row.changes.push_back(row.values[l] - peak_values[l]);
-      row.change = estimate(row.changes[n - 3], row.changes[n - 2], row.changes[n - 1], settings);
+      row.change = estimate(change(row, n - 3), change(row, n - 2), change(row, n - 1), settings);
       bands.rows.push_back(std::move(row));
     }
   }
@@ -101,7 +101,7 @@ std::string history_bands_csv(const HistoryBands& bands) {
     const auto cells = estimate_cells(row.estimate);
     fields.insert(fields.end(), cells.begin(), cells.end());
     fields.push_back(row.estimate.note);
-    for (double v : {row.peak_time_s, row.changes.back(), row.change.band_low, row.change.band_high})
+    for (double v : {row.peak_time_s, row.change.fine, row.change.band_low, row.change.band_high})
       fields.push_back(number_text(v));
     fields.emplace_back(change_resolution(row));
     for (auto& field : fields) field = sweep::csv_field(field);

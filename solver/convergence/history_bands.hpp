@@ -32,8 +32,7 @@ struct HistoryBandRow {
   std::vector<double> values;  // per level, coarsest first (NaN when missing)
   Estimate estimate;          // on the three finest levels
   double peak_time_s = 0;     // the finest level's time of the largest |value| (NaN when it has none)
-  std::vector<double> changes;  // per level: the value less the value at peak_time_s
-  Estimate change;            // on the three finest levels' changes
+  Estimate change;            // on the three finest levels' values less their values at peak_time_s
 };
 
 // "below" or "above" (the value at the peak time, resolved) when the change's band lies wholly

@@ -287,7 +287,7 @@ TEST(HistoryBands, ChangeSincePeakHasItsOwnBand) {
   const HistoryBandRow& overlap = bands.rows[1];
   EXPECT_GT(overlap.estimate.band_high, bands.rows[0].estimate.band_low) << "the two times' bands overlap";
   EXPECT_EQ(overlap.change.behaviour, Behaviour::converged);
-  EXPECT_NEAR(overlap.changes.back(), -0.04, 1e-12);
+  EXPECT_NEAR(overlap.change.fine, -0.04, 1e-12);
   EXPECT_STREQ(change_resolution(overlap), "below");
   const HistoryBandRow& later = bands.rows[2];
   ASSERT_EQ(later.change.behaviour, Behaviour::monotone);
