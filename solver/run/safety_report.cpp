@@ -104,6 +104,8 @@ SafetyReport::SafetyReport(const ThresholdsSpec& thresholds, const TetMesh& mesh
       region_mm_(thresholds.region_mm),
       positions_(evaluator.point_positions()),
       volumes_(evaluator.point_volumes()),
+      tetrahedra_(evaluator.tissue_tetrahedra()),
+      point_barycentric_(evaluator.point_barycentric()),
       evaluator_(evaluator),
       window_s_(thresholds.strain_rate_window_s),
       window_(2.0 * window_s_, window_s_ / 4.0),
@@ -112,10 +114,9 @@ SafetyReport::SafetyReport(const ThresholdsSpec& thresholds, const TetMesh& mesh
   for (const LimitText& text : kLimitText)
     limits_.push_back({text.name, text.field, thresholds.*text.limit, text.windowed});
   const double radius = radius_mm_ / kMmPerM;
-  const std::vector<fields::Tetrahedron> tissue = evaluator.tissue_tetrahedra();
-  ball_ = std::make_unique<fields::BallAverager>(positions_, volumes_, tissue, radius);
-  half_ball_ = std::make_unique<fields::BallAverager>(positions_, volumes_, tissue, radius / 2);
-  double_ball_ = std::make_unique<fields::BallAverager>(positions_, volumes_, tissue, 2 * radius);
+  ball_ = std::make_unique<fields::BallAverager>(positions_, volumes_, tetrahedra_, radius);
+  half_ball_ = std::make_unique<fields::BallAverager>(positions_, volumes_, tetrahedra_, radius / 2);
+  double_ball_ = std::make_unique<fields::BallAverager>(positions_, volumes_, tetrahedra_, 2 * radius);
   if (mesh.surface_faces.count(kCavity)) {
     region_ = near_cavity(mesh, positions_, region_mm_ / kMmPerM);
     region_description_ = fmt::format("tissue within {} mm of the cavity surface", region_mm_);
@@ -165,10 +166,11 @@ void SafetyReport::judge_windowed(double t) {
 SafetyReport::Now SafetyReport::measure(const Limit& limit, const std::vector<double>& values) const {
   Now now;
   now.critical_distance = ball_->maximum(values);
-  now.above = fields::volume_above(values, volumes_, positions_, limit.limit);
-  const double in_region = fields::volume_above(values, volumes_, positions_, limit.limit, region_).volume;
+  const fields::TissueElements elements{tetrahedra_, point_barycentric_};
+  now.above = fields::volume_above(values, volumes_, elements, limit.limit);
+  const double in_region = fields::volume_above(values, volumes_, elements, limit.limit, region_).volume;
   now.region_fraction = region_volume_ > 0.0 ? in_region / region_volume_ : 0.0;
-  now.percentile = fields::volume_percentile(values, volumes_, percentile_, region_);
+  now.percentile = fields::volume_percentile(values, volumes_, elements, percentile_, region_);
   return now;
 }
 

@@ -97,6 +97,8 @@ class SafetyReport {
   double radius_mm_, percentile_, region_mm_;
   const std::vector<Point3>& positions_;
   const std::vector<double>& volumes_;
+  std::vector<fields::Tetrahedron> tetrahedra_;           // per tissue element
+  std::vector<std::array<double, 4>> point_barycentric_;  // per point of an element
   std::vector<char> region_;  // per point: near the needle
   double region_volume_ = 0.0;
   std::string region_description_;

@@ -46,8 +46,8 @@ Cloud cube(int n, double x0 = 0.0) {
 
 BallAverager averager_of(const Cloud& c, double radius) { return BallAverager(c.positions, c.volumes, c.tissue, radius); }
 
-template <class F>
-std::vector<double> sample(const Cloud& c, F f) {
+template <class Points, class F>
+std::vector<double> sample(const Points& c, F f) {
   std::vector<double> v;
   for (const Point3& x : c.positions) v.push_back(f(x));
   return v;
@@ -146,33 +146,178 @@ TEST(SafetyMetrics, BallCentresLieInTheTissue) {
   EXPECT_GT(1.0 - truncated_ball_mean(-0.2 * s, l) / l, 1.2 * expected);  // what the test tells apart
 }
 
+// The cube [0, side]³ in n³ cells of six Kuhn tetrahedra each, with `barycentric` points per
+// tetrahedron (their positions and reference volumes, tetrahedron by tetrahedron).
+struct TetCloud {
+  std::vector<Tetrahedron> tetrahedra;
+  std::vector<std::array<double, 4>> barycentric;
+  std::vector<Point3> positions;
+  std::vector<double> volumes;
+  TissueElements elements() const { return {tetrahedra, barycentric}; }
+};
+
+TetCloud kuhn_cube(int n, std::vector<std::array<double, 4>> barycentric) {
+  TetCloud c;
+  c.barycentric = std::move(barycentric);
+  const double h = kSide / n;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      for (int k = 0; k < n; ++k) {
+        std::array<int, 3> axes{0, 1, 2};
+        do {
+          Tetrahedron t;
+          t[0] = {i * h, j * h, k * h};
+          for (int v = 1; v < 4; ++v) {
+            t[v] = t[v - 1];
+            t[v][axes[v - 1]] += h;
+          }
+          c.tetrahedra.push_back(t);
+          for (const auto& l : c.barycentric) {
+            Point3 x{};
+            for (int v = 0; v < 4; ++v)
+              for (int d = 0; d < 3; ++d) x[d] += l[v] * t[v][d];
+            c.positions.push_back(x);
+            c.volumes.push_back(h * h * h / 6.0 / c.barycentric.size());
+          }
+        } while (std::next_permutation(axes.begin(), axes.end()));
+      }
+  return c;
+}
+
+// TET10's 4-point rule (Keast): barycentric (a, b, b, b) and permutations.
+std::vector<std::array<double, 4>> keast_points() {
+  const double a = (5.0 + 3.0 * std::sqrt(5.0)) / 20.0, b = (5.0 - std::sqrt(5.0)) / 20.0;
+  return {{a, b, b, b}, {b, a, b, b}, {b, b, a, b}, {b, b, b, a}};
+}
+
+TEST(SafetyMetrics, TetrahedronPartAboveALinearField) {
+  // The share of a tetrahedron where a linear field with distinct vertex values c_i exceeds t is
+  // the divided difference Σ_i (c_i - t)₊³ / Π_{j≠i} (c_i - c_j) (the field's distribution over
+  // the tetrahedron is the quadratic B-spline on the knots c_i); the centroid against Monte Carlo
+  // samples of the uniform distribution on the tetrahedron.
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  std::array<int, 5> cases{};  // by the number of vertices above
+  for (int trial = 0; trial < 60; ++trial) {
+    std::array<double, 4> c;
+    for (double& x : c) x = uniform(random);
+    const double t = 0.1 + 0.8 * uniform(random);
+    double share = 0.0;
+    int above = 0;
+    for (int i = 0; i < 4; ++i) {
+      if (c[i] <= t) continue;
+      ++above;
+      double product = 1.0;
+      for (int j = 0; j < 4; ++j)
+        if (j != i) product *= c[i] - c[j];
+      share += std::pow(c[i] - t, 3) / product;
+    }
+    ++cases[above];
+    const TetrahedronPart part = part_above(c, t);
+    EXPECT_NEAR(part.fraction, share, 1e-9) << trial;
+    if (trial % 6 != 0 || part.fraction < 0.05) continue;
+    std::array<double, 4> centroid{};
+    int inside = 0;
+    for (int s = 0; s < 200000; ++s) {
+      std::array<double, 4> l;
+      double sum = 0.0;
+      for (double& x : l) sum += x = -std::log(1.0 - uniform(random));
+      double f = 0.0;
+      for (int i = 0; i < 4; ++i) f += (l[i] /= sum) * c[i];
+      if (f <= t) continue;
+      ++inside;
+      for (int i = 0; i < 4; ++i) centroid[i] += l[i];
+    }
+    for (int i = 0; i < 4; ++i) EXPECT_NEAR(part.centroid[i], centroid[i] / inside, 5e-3) << trial << " " << i;
+  }
+  EXPECT_GT(cases[1] * cases[2] * cases[3], 0);  // every cut: a corner, a prism, all but a corner
+  EXPECT_EQ(part_above({0.0, 1.0, 2.0, 3.0}, 3.0).fraction, 0.0);
+  EXPECT_EQ(part_above({0.0, 1.0, 2.0, 3.0}, -1.0).fraction, 1.0);
+}
+
 TEST(SafetyMetrics, VolumeAboveALimitAndItsCentroid) {
-  const Cloud c = cube(20);
+  // A linear field: its volume above t = 0.713 is (1 - t) side³ on any mesh, with centroid
+  // x = (1 + t)/2 side. The points' own volumes above t (a whole w_q per point above) miss it by
+  // part of a cell layer, the error the cut removes.
+  const TetCloud c = kuhn_cube(10, keast_points());
   const auto field = sample(c, [](const Point3& x) { return x[0] / kSide; });
-  const VolumeAbove above = volume_above(field, c.volumes, c.positions, 0.7);
-  EXPECT_NEAR(above.volume, 0.3 * std::pow(kSide, 3), 1e-12 * std::pow(kSide, 3));
-  EXPECT_NEAR(above.centroid[0], 0.85e-3, 1e-15);
-  EXPECT_NEAR(above.centroid[1], 0.5e-3, 1e-15);
+  const double t = 0.713, cube = std::pow(kSide, 3);
+  const VolumeAbove above = volume_above(field, c.volumes, c.elements(), t);
+  EXPECT_NEAR(above.volume, (1.0 - t) * cube, 1e-12 * cube);
+  EXPECT_NEAR(above.centroid[0], (1.0 + t) / 2 * kSide, 1e-12 * kSide);
+  EXPECT_NEAR(above.centroid[1], 0.5 * kSide, 1e-12 * kSide);
+  double points_above = 0.0;
+  for (std::size_t q = 0; q < field.size(); ++q)
+    if (field[q] > t) points_above += c.volumes[q];
+  EXPECT_GT(std::abs(points_above - (1.0 - t) * cube), 0.01 * cube);  // what the test tells apart
   // Inside the region y < 0.5 mm only: half of it.
   std::vector<char> lower_half;
   for (const Point3& x : c.positions) lower_half.push_back(x[1] < 0.5e-3);
-  const VolumeAbove half = volume_above(field, c.volumes, c.positions, 0.7, lower_half);
-  EXPECT_NEAR(half.volume, 0.15 * std::pow(kSide, 3), 1e-12 * std::pow(kSide, 3));
-  EXPECT_NEAR(half.centroid[1], 0.25e-3, 1e-15);
-  EXPECT_EQ(volume_above(field, c.volumes, c.positions, 2.0).volume, 0.0);
+  const VolumeAbove half = volume_above(field, c.volumes, c.elements(), t, lower_half);
+  EXPECT_NEAR(half.volume, (1.0 - t) / 2 * cube, 1e-12 * cube);
+  EXPECT_NEAR(half.centroid[1], 0.25e-3, 1e-12 * kSide);
+  EXPECT_EQ(volume_above(field, c.volumes, c.elements(), 2.0).volume, 0.0);
+  // One point per element (TET4): a constant field per element, counted whole or not at all.
+  const TetCloud centroids = kuhn_cube(10, {{0.25, 0.25, 0.25, 0.25}});
+  const auto constant = sample(centroids, [](const Point3& x) { return x[0] / kSide; });
+  double whole = 0.0;
+  for (std::size_t q = 0; q < constant.size(); ++q)
+    if (constant[q] > t) whole += centroids.volumes[q];
+  EXPECT_NEAR(volume_above(constant, centroids.volumes, centroids.elements(), t).volume, whole, 1e-12 * cube);
+}
+
+TEST(SafetyMetrics, VolumeAboveASmoothFieldConvergesAtSecondOrder) {
+  // f = |x|²/side² over the cube is above t = 1/2 outside the sphere octant of radius side/√2:
+  // volume (1 - π/6 (1/2)^(3/2)) side³. The linear field per element misses it by O(h²) (here
+  // faster: the level surface's errors partly cancel), 27–120 times less than the points' own
+  // volumes above t do on these meshes.
+  const double t = 0.5, exact = 1.0 - M_PI / 6.0 * std::pow(0.5, 1.5);
+  std::vector<double> errors, point_errors;
+  for (int n : {8, 16, 32}) {
+    const TetCloud c = kuhn_cube(n, keast_points());
+    const auto field =
+        sample(c, [](const Point3& x) { return (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) / (kSide * kSide); });
+    errors.push_back(std::abs(volume_above(field, c.volumes, c.elements(), t).volume / std::pow(kSide, 3) - exact));
+    double points_above = 0.0;
+    for (std::size_t q = 0; q < field.size(); ++q)
+      if (field[q] > t) points_above += c.volumes[q];
+    point_errors.push_back(std::abs(points_above / std::pow(kSide, 3) - exact));
+  }
+  for (int k : {0, 1}) EXPECT_GT(std::log2(errors[k] / errors[k + 1]), 1.9) << k;
+  EXPECT_LT(errors[2], 1e-6);
+  EXPECT_GT(point_errors[2], 50 * errors[2]);  // what the test tells apart
 }
 
 TEST(SafetyMetrics, VolumePercentileOfAUniformlyDistributedField) {
-  // f = x/side is uniform on (0, 1) by volume: its P-th percentile is P/100, to a cell.
-  const Cloud c = cube(50);
+  // f = x/side is uniform on (0, 1) by volume: its P-th percentile is P/100, exactly for the
+  // linear field per element.
+  const TetCloud c = kuhn_cube(10, keast_points());
   const auto field = sample(c, [](const Point3& x) { return x[0] / kSide; });
-  for (double percent : {50.0, 90.0, 99.0})
-    EXPECT_NEAR(volume_percentile(field, c.volumes, percent), percent / 100.0, 1.0 / 50) << percent;
+  for (double percent : {50.0, 90.0, 99.0, 99.9})
+    EXPECT_NEAR(volume_percentile(field, c.volumes, c.elements(), percent), percent / 100.0, 1e-9) << percent;
   // Over the region x > 0.5 mm, f is uniform on (0.5, 1).
   std::vector<char> right;
   for (const Point3& x : c.positions) right.push_back(x[0] > 0.5e-3);
-  EXPECT_NEAR(volume_percentile(field, c.volumes, 90.0, right), 0.95, 1.0 / 50);
-  EXPECT_THROW(volume_percentile(field, c.volumes, 100.0), std::invalid_argument);
+  EXPECT_NEAR(volume_percentile(field, c.volumes, c.elements(), 90.0, right), 0.95, 1e-9);
+  EXPECT_THROW(volume_percentile(field, c.volumes, c.elements(), 100.0), std::invalid_argument);
+  // A homogeneous field up to round-off (its range a few ulps, below any relative tolerance).
+  std::vector<double> homogeneous(field.size(), 0.3);
+  for (std::size_t q = 0; q < homogeneous.size(); q += 7) homogeneous[q] = std::nextafter(0.3, 1.0);
+  EXPECT_NEAR(volume_percentile(homogeneous, c.volumes, c.elements(), 99.0), 0.3, 1e-15);
+  // f = |x|²/side²: the volume above v <= 1 is (1 - π/6 v^(3/2)) side³, so the median is (3/π)^(2/3),
+  // to the volume's error at n = 16 (7e-6 above) over the slope π/4 v^(1/2).
+  const TetCloud fine = kuhn_cube(16, keast_points());
+  const auto square =
+      sample(fine, [](const Point3& x) { return (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) / (kSide * kSide); });
+  EXPECT_NEAR(volume_percentile(square, fine.volumes, fine.elements(), 50.0), std::pow(3.0 / M_PI, 2.0 / 3.0), 2e-5);
+  // One point per element: the value of the element whose volume, hottest first, passes the share.
+  const TetCloud centroids = kuhn_cube(10, {{0.25, 0.25, 0.25, 0.25}});
+  auto constant = sample(centroids, [](const Point3& x) { return x[0] / kSide + 0.1 * x[1] / kSide; });
+  std::vector<double> sorted = constant;
+  std::sort(sorted.begin(), sorted.end(), std::greater<>());
+  const double percentile = volume_percentile(constant, centroids.volumes, centroids.elements(), 90.0);
+  const std::size_t hottest = static_cast<std::size_t>(0.1 * sorted.size());  // equal volumes
+  EXPECT_NEAR(percentile, sorted[hottest], 1e-9);
 }
 
 }  // namespace

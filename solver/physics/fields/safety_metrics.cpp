@@ -16,6 +16,9 @@ namespace {
 
 constexpr int kVoxelsPerRadius = 4;         // lattice spacing s = ℓ/4
 constexpr long long kKeyBias = 1LL << 20;   // lattice indices from -2^20 to 2^20
+// The bisection for a percentile stops at this share of the field's range (far below the 9
+// digits the history and summary print of it).
+constexpr double kPercentileTolerance = 1e-11;
 
 bool selected(std::span<const char> mask, std::size_t q) { return mask.empty() || mask[q]; }
 
@@ -285,39 +288,197 @@ LocatedValue BallAverager::maximum(std::span<const double> field) const {
                            kBlock * block.index[2] + l % kBlock})};
 }
 
-VolumeAbove volume_above(std::span<const double> field, std::span<const double> volumes,
-                         std::span<const Point3> positions, double limit, std::span<const char> mask) {
+TetrahedronPart part_above(const std::array<double, 4>& vertex_value, double limit) {
+  using Bary = std::array<double, 4>;
+  const auto vertex = [](int i) {
+    Bary e{};
+    e[i] = 1.0;
+    return e;
+  };
+  // The point of edge (i, j), i above and j not, where the field equals the limit.
+  const auto crossing = [&](int i, int j) {
+    const double s = (vertex_value[i] - limit) / (vertex_value[i] - vertex_value[j]);
+    Bary x = vertex(i);
+    x[i] -= s;
+    x[j] += s;
+    return x;
+  };
+  // A tetrahedron of barycentric points, added to `part` by its volume share and centroid.
+  const auto add = [](TetrahedronPart& part, const Bary& a, const Bary& b, const Bary& c, const Bary& d) {
+    double m[3][3];
+    for (int r = 0; r < 3; ++r) {
+      m[0][r] = b[r + 1] - a[r + 1];
+      m[1][r] = c[r + 1] - a[r + 1];
+      m[2][r] = d[r + 1] - a[r + 1];
+    }
+    const double share = std::abs(m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+                                  m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+                                  m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]));
+    for (int i = 0; i < 4; ++i) part.centroid[i] += share * (a[i] + b[i] + c[i] + d[i]) / 4.0;
+    part.fraction += share;
+  };
+  std::array<int, 4> above{}, below{};
+  int n_above = 0, n_below = 0;
+  for (int i = 0; i < 4; ++i) (vertex_value[i] > limit ? above[n_above++] : below[n_below++]) = i;
+  TetrahedronPart part;
+  if (n_above == 0) return part;
+  if (n_above == 4) return {1.0, {0.25, 0.25, 0.25, 0.25}};
+  if (n_above == 1) {
+    const int a = above[0];
+    add(part, vertex(a), crossing(a, below[0]), crossing(a, below[1]), crossing(a, below[2]));
+  } else if (n_above == 2) {
+    // A prism: triangle (a, ac, ad) on face acd, triangle (b, bc, bd) on face bcd, in three
+    // tetrahedra that split its quadrilateral faces consistently.
+    const int a = above[0], b = above[1], c = below[0], d = below[1];
+    const Bary p0 = vertex(a), p1 = crossing(a, c), p2 = crossing(a, d), p3 = vertex(b), p4 = crossing(b, c),
+               p5 = crossing(b, d);
+    add(part, p0, p1, p2, p3);
+    add(part, p1, p2, p3, p4);
+    add(part, p2, p3, p4, p5);
+  } else {
+    // The whole tetrahedron less the corner at the one vertex not above.
+    const int d = below[0];
+    TetrahedronPart corner;
+    const auto from_d = [&](int j) {  // the crossing on edge (d, j), j above
+      const double s = (limit - vertex_value[d]) / (vertex_value[j] - vertex_value[d]);
+      Bary x = vertex(d);
+      x[d] -= s;
+      x[j] += s;
+      return x;
+    };
+    add(corner, vertex(d), from_d(above[0]), from_d(above[1]), from_d(above[2]));
+    part.fraction = 1.0 - corner.fraction;
+    for (int i = 0; i < 4; ++i) part.centroid[i] = 0.25 - corner.centroid[i];
+  }
+  if (part.fraction > 0.0)
+    for (double& x : part.centroid) x /= part.fraction;
+  return part;
+}
+
+namespace {
+
+// The elements' fields (TissueElements) from their points' values: per element, the vertex
+// values of its linear field (all four the point's value for one point) and the volume of its
+// points that the mask selects (zero: the element is not selected).
+struct ElementFields {
+  std::vector<std::array<double, 4>> vertex_value;
+  std::vector<double> selected_volume;
+};
+
+ElementFields element_fields(std::span<const double> field, std::span<const double> volumes,
+                             const TissueElements& elements, std::span<const char> mask) {
+  const std::size_t points = elements.point_barycentric.size();
+  if (points != 1 && points != 4) throw std::invalid_argument("volume above a level: elements have 1 or 4 points");
+  if (field.size() != points * elements.tetrahedra.size() || volumes.size() != field.size())
+    throw std::invalid_argument("volume above a level: one value and one volume per element point are needed");
+  // The vertex values of the linear field through the 4 points: c = Λ⁻¹ f, Λ_qi = λ_i(point q).
+  std::array<std::array<double, 4>, 4> vertex_from_points{};
+  if (points == 4) {
+    std::array<std::array<double, 8>, 4> m{};  // [Λ | I], reduced to [I | Λ⁻¹]
+    for (int q = 0; q < 4; ++q) {
+      for (int i = 0; i < 4; ++i) m[q][i] = elements.point_barycentric[q][i];
+      m[q][4 + q] = 1.0;
+    }
+    for (int col = 0; col < 4; ++col) {
+      int pivot = col;
+      for (int r = col + 1; r < 4; ++r)
+        if (std::abs(m[r][col]) > std::abs(m[pivot][col])) pivot = r;
+      if (!(std::abs(m[pivot][col]) > 1e-12))
+        throw std::invalid_argument("volume above a level: the element points do not determine a linear field");
+      std::swap(m[col], m[pivot]);
+      const double diagonal = m[col][col];
+      for (double& x : m[col]) x /= diagonal;
+      for (int r = 0; r < 4; ++r)
+        if (r != col) {
+          const double factor = m[r][col];
+          for (int k = 0; k < 8; ++k) m[r][k] -= factor * m[col][k];
+        }
+    }
+    for (int i = 0; i < 4; ++i)
+      for (int q = 0; q < 4; ++q) vertex_from_points[i][q] = m[i][4 + q];
+  }
+  ElementFields out;
+  out.vertex_value.resize(elements.tetrahedra.size());
+  out.selected_volume.assign(elements.tetrahedra.size(), 0.0);
+  for (std::size_t k = 0; k < elements.tetrahedra.size(); ++k) {
+    const std::size_t first = k * points;
+    for (std::size_t q = first; q < first + points; ++q)
+      if (selected(mask, q)) out.selected_volume[k] += volumes[q];
+    std::array<double, 4>& c = out.vertex_value[k];
+    if (points == 1) {
+      c.fill(field[first]);
+      continue;
+    }
+    for (int i = 0; i < 4; ++i)
+      for (int q = 0; q < 4; ++q) c[i] += vertex_from_points[i][q] * field[first + q];
+  }
+  return out;
+}
+
+}  // namespace
+
+VolumeAbove volume_above(std::span<const double> field, std::span<const double> volumes, const TissueElements& elements,
+                         double limit, std::span<const char> mask) {
+  const ElementFields fields = element_fields(field, volumes, elements, mask);
   VolumeAbove out;
-  for (std::size_t q = 0; q < field.size(); ++q) {
-    if (!selected(mask, q) || !(field[q] > limit)) continue;
-    out.volume += volumes[q];
-    for (int c = 0; c < 3; ++c) out.centroid[c] += volumes[q] * positions[q][c];
+  for (std::size_t k = 0; k < elements.tetrahedra.size(); ++k) {
+    const std::array<double, 4>& c = fields.vertex_value[k];
+    if (fields.selected_volume[k] == 0.0 || !(std::max({c[0], c[1], c[2], c[3]}) > limit)) continue;
+    const TetrahedronPart part = part_above(c, limit);
+    const double v = part.fraction * fields.selected_volume[k];
+    const Tetrahedron& t = elements.tetrahedra[k];
+    out.volume += v;
+    for (int i = 0; i < 4; ++i)
+      for (int d = 0; d < 3; ++d) out.centroid[d] += v * part.centroid[i] * t[i][d];
   }
   if (out.volume > 0.0)
     for (double& x : out.centroid) x /= out.volume;
   return out;
 }
 
-double volume_percentile(std::span<const double> field, std::span<const double> volumes, double percent,
-                         std::span<const char> mask) {
+double volume_percentile(std::span<const double> field, std::span<const double> volumes, const TissueElements& elements,
+                         double percent, std::span<const char> mask) {
   if (!(percent > 0.0 && percent < 100.0)) throw std::invalid_argument("percentile: must lie in (0, 100)");
-  std::vector<std::size_t> order;
-  double region = 0.0;
-  for (std::size_t q = 0; q < field.size(); ++q)
-    if (selected(mask, q)) {
-      order.push_back(q);
-      region += volumes[q];
-    }
-  if (order.empty()) return 0.0;
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return field[a] > field[b]; });
-  // The first point, in descending order, whose cumulative volume passes the hottest share.
-  const double hottest = (1.0 - percent / 100.0) * region;
-  double cumulative = 0.0;
-  for (std::size_t q : order) {
-    cumulative += volumes[q];
-    if (cumulative > hottest) return field[q];
+  const ElementFields fields = element_fields(field, volumes, elements, mask);
+  // The selected elements with their lowest and highest vertex values.
+  struct Candidate {
+    std::size_t element;
+    double low, high;
+  };
+  std::vector<Candidate> straddling;
+  double region = 0.0, lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (std::size_t k = 0; k < elements.tetrahedra.size(); ++k) {
+    if (fields.selected_volume[k] == 0.0) continue;
+    const std::array<double, 4>& c = fields.vertex_value[k];
+    const auto [low, high] = std::minmax({c[0], c[1], c[2], c[3]});
+    straddling.push_back({k, low, high});
+    region += fields.selected_volume[k];
+    lo = std::min(lo, low);
+    hi = std::max(hi, high);
   }
-  return field[order.back()];
+  if (straddling.empty()) return 0.0;
+  // V(v), the volume above v, falls from the region's at v < lo to 0 at hi. Bisect for the
+  // smallest v with V(v) <= the hottest share, keeping V(lo) > share >= V(hi): an element whose
+  // lowest vertex value is above hi counts whole at every v of the bracket, one whose highest is
+  // at most lo not at all, so each narrowing keeps only the elements that straddle the bracket.
+  const double hottest = (1.0 - percent / 100.0) * region;
+  if (!(lo < hi)) return hi;  // a constant field
+  const double tolerance = kPercentileTolerance * (hi - lo);
+  lo -= tolerance;
+  double whole = 0.0;  // of the elements above the whole bracket
+  while (hi - lo > tolerance) {
+    const double mid = lo + (hi - lo) / 2;
+    if (!(mid > lo && mid < hi)) break;  // a range of a few ulps: no double lies between
+    double above = whole;
+    for (const Candidate& e : straddling)
+      above += fields.selected_volume[e.element] * part_above(fields.vertex_value[e.element], mid).fraction;
+    (above > hottest ? lo : hi) = mid;
+    std::erase_if(straddling, [&](const Candidate& e) {
+      if (e.low > hi) whole += fields.selected_volume[e.element];
+      return e.low > hi || e.high <= lo;
+    });
+  }
+  return hi;
 }
 
 }  // namespace needlefem::fields

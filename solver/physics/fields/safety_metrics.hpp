@@ -26,10 +26,20 @@
 //     |X - c|²: 3ℓ²/5; a ball cut by a plane face: the truncated ball's mean; no centre outside
 //     the tissue) in tests/run/test_safety_metrics.cpp.
 //   volume above the limit (the cumulative strain damage measure of head-injury models, CSDM;
-//     Takhounts et al. 2003, Stapp Car Crash J. 47): V = Σ_{f_q > limit} w_q, and its fraction
-//     of a stated region;
-//   percentile over a region: the smallest value v with Σ_{f_q > v} w_q <= (1 - P/100) V_region,
-//     i.e. the value the hottest (100 - P) % of the region's volume reaches.
+//     Takhounts et al. 2003, Stapp Car Crash J. 47), and its fraction of a stated region: the
+//     volume where the field the points represent exceeds the limit. In each element that field
+//     is the linear one through its points' values (TET10: the 4 points determine it; the
+//     displacement gradient of a straight quadratic element is linear, so this is the element's
+//     own field to first order in the strain's nonlinearity), and the part of the element above
+//     the limit is cut off by a plane, exactly: V = Σ_e V_e |{λ : Σ_i λ_i c_i > limit}| / |T|,
+//     c_i the field extrapolated to the vertices, V_e = Σ_q w_q. A sum of the points' volumes
+//     with f_q > limit would instead jump by a whole w_q as a point crosses the limit, an error of
+//     order h at the limit's surface whose sign changes from mesh to mesh (the refinement bands'
+//     oscillation); the cut is exact for a linear field on any mesh and O(h²) for a smooth one.
+//     TET4 has one point, a constant field per element: the element counts whole or not at all;
+//   percentile over a region: the smallest value v whose volume above (as just defined) is at
+//     most (1 - P/100) V_region, i.e. the value the hottest (100 - P) % of the region's volume
+//     reaches.
 // Regions are given as a per-point mask (run/: tissue within a distance of the needle's cavity).
 //
 // Speed: voxels wholly inside a ball enter by their sums, only voxels on its rim point by point;
@@ -107,18 +117,37 @@ class BallAverager {
   std::array<std::array<Reach, 27>, kBlockVoxels> reach_;
 };
 
-// Σ w_q over the points with f_q > limit (and mask true, when a mask is given), with the
-// centroid of that volume.
+// The tissue's elements as the volume measure sees them: element k holds points [k p, (k + 1) p)
+// of the point arrays, p = point_barycentric.size() (1 or 4), at those barycentric coordinates
+// of its straight tetrahedron (the same for every element: the quadrature rule's).
+struct TissueElements {
+  std::span<const Tetrahedron> tetrahedra;
+  std::span<const std::array<double, 4>> point_barycentric;
+};
+
+// The part of the tetrahedron where the linear field with vertex values `vertex_value` exceeds
+// `limit`: its share of the tetrahedron's volume and its centroid (barycentric coordinates).
+struct TetrahedronPart {
+  double fraction = 0.0;
+  std::array<double, 4> centroid{};
+};
+TetrahedronPart part_above(const std::array<double, 4>& vertex_value, double limit);
+
+// The volume where the elements' field (above) exceeds `limit`, with its centroid. With a mask
+// (per point), each element's volume above counts by the share of its points' volume the mask
+// selects.
 struct VolumeAbove {
   double volume = 0.0;  // m³
   Point3 centroid{};    // reference position, metres (zeros when the volume is empty)
 };
-VolumeAbove volume_above(std::span<const double> field, std::span<const double> volumes,
-                         std::span<const Point3> positions, double limit, std::span<const char> mask = {});
+VolumeAbove volume_above(std::span<const double> field, std::span<const double> volumes, const TissueElements& elements,
+                         double limit, std::span<const char> mask = {});
 
-// The volume-weighted percentile (0 < percent < 100) of `field` over the points with mask true
-// (all points when the mask is empty), as defined above.
-double volume_percentile(std::span<const double> field, std::span<const double> volumes, double percent,
-                         std::span<const char> mask = {});
+// The volume-weighted percentile (0 < percent < 100) of the elements' field over the elements
+// the mask selects (by their points' volume, as volume_above counts; all when the mask is empty),
+// as defined above: the smallest v whose volume above is at most (1 - percent/100) of the selected
+// volume.
+double volume_percentile(std::span<const double> field, std::span<const double> volumes, const TissueElements& elements,
+                         double percent, std::span<const char> mask = {});
 
 }  // namespace needlefem::fields

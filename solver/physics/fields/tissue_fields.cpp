@@ -151,6 +151,15 @@ std::vector<std::array<Point3, 4>> TissueFieldEvaluator::tissue_tetrahedra() con
   return out;
 }
 
+std::vector<std::array<double, 4>> TissueFieldEvaluator::point_barycentric() const {
+  std::vector<std::array<double, 4>> out;
+  for (const auto& point : elements::element_quadrature(mesh_.nodes_per_tet)) {
+    const auto& xi = point.xi;
+    out.push_back({1.0 - xi[0] - xi[1] - xi[2], xi[0], xi[1], xi[2]});
+  }
+  return out;
+}
+
 std::vector<material::Mat3d> TissueFieldEvaluator::deformation_gradients(Vec y) const {
   const ReadArray state(y);
   const int points = static_cast<int>(shape_values_.size());

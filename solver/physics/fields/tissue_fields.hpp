@@ -77,6 +77,9 @@ class TissueFieldEvaluator {
   // The straight tetrahedra through each tissue element's vertices (reference positions, m): the
   // region the points fill.
   std::vector<std::array<Point3, 4>> tissue_tetrahedra() const;
+  // The barycentric coordinates of an element's points in its tetrahedron, in point order (the
+  // quadrature rule's, the same in every element).
+  std::vector<std::array<double, 4>> point_barycentric() const;
 
  private:
   // Node fields filled, every other array sized and zeroed (maxima at -inf).
