@@ -339,14 +339,7 @@ TetrahedronPart part_above(const std::array<double, 4>& vertex_value, double lim
     // The whole tetrahedron less the corner at the one vertex not above.
     const int d = below[0];
     TetrahedronPart corner;
-    const auto from_d = [&](int j) {  // the crossing on edge (d, j), j above
-      const double s = (limit - vertex_value[d]) / (vertex_value[j] - vertex_value[d]);
-      Bary x = vertex(d);
-      x[d] -= s;
-      x[j] += s;
-      return x;
-    };
-    add(corner, vertex(d), from_d(above[0]), from_d(above[1]), from_d(above[2]));
+    add(corner, vertex(d), crossing(above[0], d), crossing(above[1], d), crossing(above[2], d));
     part.fraction = 1.0 - corner.fraction;
     for (int i = 0; i < 4; ++i) part.centroid[i] = 0.25 - corner.centroid[i];
   }
