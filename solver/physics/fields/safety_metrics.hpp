@@ -33,9 +33,9 @@
 //     own field to first order in the strain's nonlinearity), and the part of the element above
 //     the limit is cut off by a plane, exactly: V = Σ_e V_e |{λ : Σ_i λ_i c_i > limit}| / |T|,
 //     c_i the field extrapolated to the vertices, V_e = Σ_q w_q. A sum of the points' volumes
-//     with f_q > limit would instead jump by a whole w_q as a point crosses the limit, an error of
-//     order h at the limit's surface whose sign changes from mesh to mesh (the refinement bands'
-//     oscillation); the cut is exact for a linear field on any mesh and O(h²) for a smooth one.
+//     with f_q > limit would instead jump by a whole w_q as a point crosses the limit, an error
+//     at the limit's surface whose sign changes from mesh to mesh; the cut is exact for a linear
+//     field on any mesh and O(h²) for a smooth one (docs/accuracy.md §12).
 //     TET4 has one point, a constant field per element: the element counts whole or not at all;
 //   percentile over a region: the smallest value v whose volume above (as just defined) is at
 //     most (1 - P/100) V_region, i.e. the value the hottest (100 - P) % of the region's volume
