@@ -106,6 +106,7 @@ SafetyReport::SafetyReport(const ThresholdsSpec& thresholds, const TetMesh& mesh
       volumes_(evaluator.point_volumes()),
       tetrahedra_(evaluator.tissue_tetrahedra()),
       point_barycentric_(evaluator.point_barycentric()),
+      elements_(tetrahedra_, point_barycentric_),
       evaluator_(evaluator),
       window_s_(thresholds.strain_rate_window_s),
       window_(2.0 * window_s_, window_s_ / 4.0),
@@ -117,15 +118,18 @@ SafetyReport::SafetyReport(const ThresholdsSpec& thresholds, const TetMesh& mesh
   ball_ = std::make_unique<fields::BallAverager>(positions_, volumes_, tetrahedra_, radius);
   half_ball_ = std::make_unique<fields::BallAverager>(positions_, volumes_, tetrahedra_, radius / 2);
   double_ball_ = std::make_unique<fields::BallAverager>(positions_, volumes_, tetrahedra_, 2 * radius);
+  std::vector<char> region;  // per point: near the needle
   if (mesh.surface_faces.count(kCavity)) {
-    region_ = near_cavity(mesh, positions_, region_mm_ / kMmPerM);
+    region = near_cavity(mesh, positions_, region_mm_ / kMmPerM);
     region_description_ = fmt::format("tissue within {} mm of the cavity surface", region_mm_);
   } else {
-    region_.assign(positions_.size(), 1);
+    region.assign(positions_.size(), 1);
     region_description_ = "all tissue (the scene has no cavity)";
   }
   for (std::size_t q = 0; q < positions_.size(); ++q)
-    if (region_[q]) region_volume_ += volumes_[q];
+    if (region[q]) region_volume_ += volumes_[q];
+  element_volumes_ = elements_.selected_volumes(volumes_);
+  region_element_volumes_ = elements_.selected_volumes(volumes_, region);
 }
 
 void SafetyReport::observe_step(double t, Vec y) {
@@ -166,11 +170,11 @@ void SafetyReport::judge_windowed(double t) {
 SafetyReport::Now SafetyReport::measure(const Limit& limit, const std::vector<double>& values) const {
   Now now;
   now.critical_distance = ball_->maximum(values);
-  const fields::TissueElements elements{tetrahedra_, point_barycentric_};
-  now.above = fields::volume_above(values, volumes_, elements, limit.limit);
-  const double in_region = fields::volume_above(values, volumes_, elements, limit.limit, region_).volume;
+  const std::vector<std::array<double, 4>> vertex_values = elements_.vertex_values(values);
+  now.above = fields::volume_above(elements_, vertex_values, element_volumes_, limit.limit);
+  const double in_region = fields::volume_above(elements_, vertex_values, region_element_volumes_, limit.limit).volume;
   now.region_fraction = region_volume_ > 0.0 ? in_region / region_volume_ : 0.0;
-  now.percentile = fields::volume_percentile(values, volumes_, elements, percentile_, region_);
+  now.percentile = fields::volume_percentile(vertex_values, region_element_volumes_, percentile_);
   return now;
 }
 

@@ -64,6 +64,8 @@ class SafetyReport {
   // `thresholds` gives the limits and the metrics' settings; `evaluator` the tissue's quadrature
   // points and their deformation gradients (it must outlive the report); `mesh` its cavity surface.
   SafetyReport(const ThresholdsSpec& thresholds, const TetMesh& mesh, const fields::TissueFieldEvaluator& evaluator);
+  SafetyReport(const SafetyReport&) = delete;  // elements_ views its own arrays
+  SafetyReport& operator=(const SafetyReport&) = delete;
 
   // After an accepted step at t between output times, state y: when a quarter of the strain-rate
   // window has passed since the last, keeps the deformation gradient and judges the windowed rate.
@@ -99,8 +101,10 @@ class SafetyReport {
   const std::vector<double>& volumes_;
   std::vector<fields::Tetrahedron> tetrahedra_;           // per tissue element
   std::vector<std::array<double, 4>> point_barycentric_;  // per point of an element
-  std::vector<char> region_;  // per point: near the needle
-  double region_volume_ = 0.0;
+  fields::TissueElements elements_;                       // views of the two above
+  double region_volume_ = 0.0;  // of the tissue near the needle
+  // Per element: its volume, and its volume in the region.
+  std::vector<double> element_volumes_, region_element_volumes_;
   std::string region_description_;
   std::unique_ptr<fields::BallAverager> ball_, half_ball_, double_ball_;
   const fields::TissueFieldEvaluator& evaluator_;

@@ -154,6 +154,14 @@ struct TetCloud {
   std::vector<Point3> positions;
   std::vector<double> volumes;
   TissueElements elements() const { return {tetrahedra, barycentric}; }
+  VolumeAbove above(const std::vector<double>& field, double t, std::span<const char> mask = {}) const {
+    const TissueElements e = elements();
+    return volume_above(e, e.vertex_values(field), e.selected_volumes(volumes, mask), t);
+  }
+  double percentile(const std::vector<double>& field, double percent, std::span<const char> mask = {}) const {
+    const TissueElements e = elements();
+    return volume_percentile(e.vertex_values(field), e.selected_volumes(volumes, mask), percent);
+  }
 };
 
 TetCloud kuhn_cube(int n, std::vector<std::array<double, 4>> barycentric) {
@@ -242,7 +250,7 @@ TEST(SafetyMetrics, VolumeAboveALimitAndItsCentroid) {
   const TetCloud c = kuhn_cube(10, keast_points());
   const auto field = sample(c, [](const Point3& x) { return x[0] / kSide; });
   const double t = 0.713, cube = std::pow(kSide, 3);
-  const VolumeAbove above = volume_above(field, c.volumes, c.elements(), t);
+  const VolumeAbove above = c.above(field, t);
   EXPECT_NEAR(above.volume, (1.0 - t) * cube, 1e-12 * cube);
   EXPECT_NEAR(above.centroid[0], (1.0 + t) / 2 * kSide, 1e-12 * kSide);
   EXPECT_NEAR(above.centroid[1], 0.5 * kSide, 1e-12 * kSide);
@@ -253,17 +261,17 @@ TEST(SafetyMetrics, VolumeAboveALimitAndItsCentroid) {
   // Inside the region y < 0.5 mm only: half of it.
   std::vector<char> lower_half;
   for (const Point3& x : c.positions) lower_half.push_back(x[1] < 0.5e-3);
-  const VolumeAbove half = volume_above(field, c.volumes, c.elements(), t, lower_half);
+  const VolumeAbove half = c.above(field, t, lower_half);
   EXPECT_NEAR(half.volume, (1.0 - t) / 2 * cube, 1e-12 * cube);
   EXPECT_NEAR(half.centroid[1], 0.25e-3, 1e-12 * kSide);
-  EXPECT_EQ(volume_above(field, c.volumes, c.elements(), 2.0).volume, 0.0);
+  EXPECT_EQ(c.above(field, 2.0).volume, 0.0);
   // One point per element (TET4): a constant field per element, counted whole or not at all.
   const TetCloud centroids = kuhn_cube(10, {{0.25, 0.25, 0.25, 0.25}});
   const auto constant = sample(centroids, [](const Point3& x) { return x[0] / kSide; });
   double whole = 0.0;
   for (std::size_t q = 0; q < constant.size(); ++q)
     if (constant[q] > t) whole += centroids.volumes[q];
-  EXPECT_NEAR(volume_above(constant, centroids.volumes, centroids.elements(), t).volume, whole, 1e-12 * cube);
+  EXPECT_NEAR(centroids.above(constant, t).volume, whole, 1e-12 * cube);
 }
 
 TEST(SafetyMetrics, VolumeAboveASmoothFieldConvergesAtSecondOrder) {
@@ -277,7 +285,7 @@ TEST(SafetyMetrics, VolumeAboveASmoothFieldConvergesAtSecondOrder) {
     const TetCloud c = kuhn_cube(n, keast_points());
     const auto field =
         sample(c, [](const Point3& x) { return (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) / (kSide * kSide); });
-    errors.push_back(std::abs(volume_above(field, c.volumes, c.elements(), t).volume / std::pow(kSide, 3) - exact));
+    errors.push_back(std::abs(c.above(field, t).volume / std::pow(kSide, 3) - exact));
     double points_above = 0.0;
     for (std::size_t q = 0; q < field.size(); ++q)
       if (field[q] > t) points_above += c.volumes[q];
@@ -294,28 +302,28 @@ TEST(SafetyMetrics, VolumePercentileOfAUniformlyDistributedField) {
   const TetCloud c = kuhn_cube(10, keast_points());
   const auto field = sample(c, [](const Point3& x) { return x[0] / kSide; });
   for (double percent : {50.0, 90.0, 99.0, 99.9})
-    EXPECT_NEAR(volume_percentile(field, c.volumes, c.elements(), percent), percent / 100.0, 1e-9) << percent;
+    EXPECT_NEAR(c.percentile(field, percent), percent / 100.0, 1e-9) << percent;
   // Over the region x > 0.5 mm, f is uniform on (0.5, 1).
   std::vector<char> right;
   for (const Point3& x : c.positions) right.push_back(x[0] > 0.5e-3);
-  EXPECT_NEAR(volume_percentile(field, c.volumes, c.elements(), 90.0, right), 0.95, 1e-9);
-  EXPECT_THROW(volume_percentile(field, c.volumes, c.elements(), 100.0), std::invalid_argument);
+  EXPECT_NEAR(c.percentile(field, 90.0, right), 0.95, 1e-9);
+  EXPECT_THROW(c.percentile(field, 100.0), std::invalid_argument);
   // A homogeneous field up to round-off (its range a few ulps, below any relative tolerance).
   std::vector<double> homogeneous(field.size(), 0.3);
   for (std::size_t q = 0; q < homogeneous.size(); q += 7) homogeneous[q] = std::nextafter(0.3, 1.0);
-  EXPECT_NEAR(volume_percentile(homogeneous, c.volumes, c.elements(), 99.0), 0.3, 1e-15);
+  EXPECT_NEAR(c.percentile(homogeneous, 99.0), 0.3, 1e-15);
   // f = |x|²/side²: the volume above v <= 1 is (1 - π/6 v^(3/2)) side³, so the median is (3/π)^(2/3),
   // to the volume's error at n = 16 (7e-6 above) over the slope π/4 v^(1/2).
   const TetCloud fine = kuhn_cube(16, keast_points());
   const auto square =
       sample(fine, [](const Point3& x) { return (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) / (kSide * kSide); });
-  EXPECT_NEAR(volume_percentile(square, fine.volumes, fine.elements(), 50.0), std::pow(3.0 / M_PI, 2.0 / 3.0), 2e-5);
+  EXPECT_NEAR(fine.percentile(square, 50.0), std::pow(3.0 / M_PI, 2.0 / 3.0), 2e-5);
   // One point per element: the value of the element whose volume, hottest first, passes the share.
   const TetCloud centroids = kuhn_cube(10, {{0.25, 0.25, 0.25, 0.25}});
   auto constant = sample(centroids, [](const Point3& x) { return x[0] / kSide + 0.1 * x[1] / kSide; });
   std::vector<double> sorted = constant;
   std::sort(sorted.begin(), sorted.end(), std::greater<>());
-  const double percentile = volume_percentile(constant, centroids.volumes, centroids.elements(), 90.0);
+  const double percentile = centroids.percentile(constant, 90.0);
   const std::size_t hottest = static_cast<std::size_t>(0.1 * sorted.size());  // equal volumes
   EXPECT_NEAR(percentile, sorted[hottest], 1e-9);
 }

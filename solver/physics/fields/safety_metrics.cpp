@@ -348,78 +348,72 @@ TetrahedronPart part_above(const std::array<double, 4>& vertex_value, double lim
   return part;
 }
 
-namespace {
-
-// The elements' fields (TissueElements) from their points' values: per element, the vertex
-// values of its linear field (all four the point's value for one point) and the volume of its
-// points that the mask selects (zero: the element is not selected).
-struct ElementFields {
-  std::vector<std::array<double, 4>> vertex_value;
-  std::vector<double> selected_volume;
-};
-
-ElementFields element_fields(std::span<const double> field, std::span<const double> volumes,
-                             const TissueElements& elements, std::span<const char> mask) {
-  const std::size_t points = elements.point_barycentric.size();
-  if (points != 1 && points != 4) throw std::invalid_argument("volume above a level: elements have 1 or 4 points");
-  if (field.size() != points * elements.tetrahedra.size() || volumes.size() != field.size())
-    throw std::invalid_argument("volume above a level: one value and one volume per element point are needed");
-  // The vertex values of the linear field through the 4 points: c = Λ⁻¹ f, Λ_qi = λ_i(point q).
-  std::array<std::array<double, 4>, 4> vertex_from_points{};
-  if (points == 4) {
-    std::array<std::array<double, 8>, 4> m{};  // [Λ | I], reduced to [I | Λ⁻¹]
-    for (int q = 0; q < 4; ++q) {
-      for (int i = 0; i < 4; ++i) m[q][i] = elements.point_barycentric[q][i];
-      m[q][4 + q] = 1.0;
-    }
-    for (int col = 0; col < 4; ++col) {
-      int pivot = col;
-      for (int r = col + 1; r < 4; ++r)
-        if (std::abs(m[r][col]) > std::abs(m[pivot][col])) pivot = r;
-      if (!(std::abs(m[pivot][col]) > 1e-12))
-        throw std::invalid_argument("volume above a level: the element points do not determine a linear field");
-      std::swap(m[col], m[pivot]);
-      const double diagonal = m[col][col];
-      for (double& x : m[col]) x /= diagonal;
-      for (int r = 0; r < 4; ++r)
-        if (r != col) {
-          const double factor = m[r][col];
-          for (int k = 0; k < 8; ++k) m[r][k] -= factor * m[col][k];
-        }
-    }
-    for (int i = 0; i < 4; ++i)
-      for (int q = 0; q < 4; ++q) vertex_from_points[i][q] = m[i][4 + q];
+TissueElements::TissueElements(std::span<const Tetrahedron> tetrahedra,
+                               std::span<const std::array<double, 4>> point_barycentric)
+    : tetrahedra_(tetrahedra), points_(point_barycentric.size()) {
+  if (points_ != 1 && points_ != 4) throw std::invalid_argument("volume above a level: elements have 1 or 4 points");
+  if (points_ == 1) return;
+  std::array<std::array<double, 8>, 4> m{};  // [Λ | I], reduced to [I | Λ⁻¹]
+  for (int q = 0; q < 4; ++q) {
+    for (int i = 0; i < 4; ++i) m[q][i] = point_barycentric[q][i];
+    m[q][4 + q] = 1.0;
   }
-  ElementFields out;
-  out.vertex_value.resize(elements.tetrahedra.size());
-  out.selected_volume.assign(elements.tetrahedra.size(), 0.0);
-  for (std::size_t k = 0; k < elements.tetrahedra.size(); ++k) {
-    const std::size_t first = k * points;
-    for (std::size_t q = first; q < first + points; ++q)
-      if (selected(mask, q)) out.selected_volume[k] += volumes[q];
-    std::array<double, 4>& c = out.vertex_value[k];
-    if (points == 1) {
+  for (int col = 0; col < 4; ++col) {
+    int pivot = col;
+    for (int r = col + 1; r < 4; ++r)
+      if (std::abs(m[r][col]) > std::abs(m[pivot][col])) pivot = r;
+    if (!(std::abs(m[pivot][col]) > 1e-12))
+      throw std::invalid_argument("volume above a level: the element points do not determine a linear field");
+    std::swap(m[col], m[pivot]);
+    const double diagonal = m[col][col];
+    for (double& x : m[col]) x /= diagonal;
+    for (int r = 0; r < 4; ++r)
+      if (r != col) {
+        const double factor = m[r][col];
+        for (int k = 0; k < 8; ++k) m[r][k] -= factor * m[col][k];
+      }
+  }
+  for (int i = 0; i < 4; ++i)
+    for (int q = 0; q < 4; ++q) vertex_from_points_[i][q] = m[i][4 + q];
+}
+
+std::vector<double> TissueElements::selected_volumes(std::span<const double> point_volumes,
+                                                     std::span<const char> mask) const {
+  if (point_volumes.size() != points_ * tetrahedra_.size())
+    throw std::invalid_argument("volume above a level: one volume per element point is needed");
+  std::vector<double> out(tetrahedra_.size(), 0.0);
+  for (std::size_t k = 0; k < tetrahedra_.size(); ++k)
+    for (std::size_t q = k * points_; q < (k + 1) * points_; ++q)
+      if (selected(mask, q)) out[k] += point_volumes[q];
+  return out;
+}
+
+std::vector<std::array<double, 4>> TissueElements::vertex_values(std::span<const double> field) const {
+  if (field.size() != points_ * tetrahedra_.size())
+    throw std::invalid_argument("volume above a level: one value per element point is needed");
+  std::vector<std::array<double, 4>> out(tetrahedra_.size());
+  for (std::size_t k = 0; k < tetrahedra_.size(); ++k) {
+    const std::size_t first = k * points_;
+    std::array<double, 4>& c = out[k];
+    if (points_ == 1) {
       c.fill(field[first]);
       continue;
     }
     for (int i = 0; i < 4; ++i)
-      for (int q = 0; q < 4; ++q) c[i] += vertex_from_points[i][q] * field[first + q];
+      for (int q = 0; q < 4; ++q) c[i] += vertex_from_points_[i][q] * field[first + q];
   }
   return out;
 }
 
-}  // namespace
-
-VolumeAbove volume_above(std::span<const double> field, std::span<const double> volumes, const TissueElements& elements,
-                         double limit, std::span<const char> mask) {
-  const ElementFields fields = element_fields(field, volumes, elements, mask);
+VolumeAbove volume_above(const TissueElements& elements, std::span<const std::array<double, 4>> vertex_values,
+                         std::span<const double> element_volumes, double limit) {
   VolumeAbove out;
-  for (std::size_t k = 0; k < elements.tetrahedra.size(); ++k) {
-    const std::array<double, 4>& c = fields.vertex_value[k];
-    if (fields.selected_volume[k] == 0.0 || !(std::max({c[0], c[1], c[2], c[3]}) > limit)) continue;
+  for (std::size_t k = 0; k < vertex_values.size(); ++k) {
+    const std::array<double, 4>& c = vertex_values[k];
+    if (element_volumes[k] == 0.0 || !(std::max({c[0], c[1], c[2], c[3]}) > limit)) continue;
     const TetrahedronPart part = part_above(c, limit);
-    const double v = part.fraction * fields.selected_volume[k];
-    const Tetrahedron& t = elements.tetrahedra[k];
+    const double v = part.fraction * element_volumes[k];
+    const Tetrahedron& t = elements.tetrahedra()[k];
     out.volume += v;
     for (int i = 0; i < 4; ++i)
       for (int d = 0; d < 3; ++d) out.centroid[d] += v * part.centroid[i] * t[i][d];
@@ -429,23 +423,22 @@ VolumeAbove volume_above(std::span<const double> field, std::span<const double> 
   return out;
 }
 
-double volume_percentile(std::span<const double> field, std::span<const double> volumes, const TissueElements& elements,
-                         double percent, std::span<const char> mask) {
+double volume_percentile(std::span<const std::array<double, 4>> vertex_values, std::span<const double> element_volumes,
+                         double percent) {
   if (!(percent > 0.0 && percent < 100.0)) throw std::invalid_argument("percentile: must lie in (0, 100)");
-  const ElementFields fields = element_fields(field, volumes, elements, mask);
-  // The selected elements with their lowest and highest vertex values.
+  // The counted elements with their lowest and highest vertex values.
   struct Candidate {
     std::size_t element;
     double low, high;
   };
   std::vector<Candidate> straddling;
   double region = 0.0, lo = std::numeric_limits<double>::infinity(), hi = -lo;
-  for (std::size_t k = 0; k < elements.tetrahedra.size(); ++k) {
-    if (fields.selected_volume[k] == 0.0) continue;
-    const std::array<double, 4>& c = fields.vertex_value[k];
+  for (std::size_t k = 0; k < vertex_values.size(); ++k) {
+    if (element_volumes[k] == 0.0) continue;
+    const std::array<double, 4>& c = vertex_values[k];
     const auto [low, high] = std::minmax({c[0], c[1], c[2], c[3]});
     straddling.push_back({k, low, high});
-    region += fields.selected_volume[k];
+    region += element_volumes[k];
     lo = std::min(lo, low);
     hi = std::max(hi, high);
   }
@@ -464,10 +457,10 @@ double volume_percentile(std::span<const double> field, std::span<const double> 
     if (!(mid > lo && mid < hi)) break;  // a range of a few ulps: no double lies between
     double above = whole;
     for (const Candidate& e : straddling)
-      above += fields.selected_volume[e.element] * part_above(fields.vertex_value[e.element], mid).fraction;
+      above += element_volumes[e.element] * part_above(vertex_values[e.element], mid).fraction;
     (above > hottest ? lo : hi) = mid;
     std::erase_if(straddling, [&](const Candidate& e) {
-      if (e.low > hi) whole += fields.selected_volume[e.element];
+      if (e.low > hi) whole += element_volumes[e.element];
       return e.low > hi || e.high <= lo;
     });
   }

@@ -117,12 +117,25 @@ class BallAverager {
   std::array<std::array<Reach, 27>, kBlockVoxels> reach_;
 };
 
-// The tissue's elements as the volume measure sees them: element k holds points [k p, (k + 1) p)
+// The tissue's elements as the volume measures see them: element k holds points [k p, (k + 1) p)
 // of the point arrays, p = point_barycentric.size() (1 or 4), at those barycentric coordinates
-// of its straight tetrahedron (the same for every element: the quadrature rule's).
-struct TissueElements {
-  std::span<const Tetrahedron> tetrahedra;
-  std::span<const std::array<double, 4>> point_barycentric;
+// of its straight tetrahedron (the same for every element: the quadrature rule's). The spans
+// must outlive it.
+class TissueElements {
+ public:
+  TissueElements(std::span<const Tetrahedron> tetrahedra, std::span<const std::array<double, 4>> point_barycentric);
+
+  std::span<const Tetrahedron> tetrahedra() const { return tetrahedra_; }
+  // Per element, the volume of its points that the mask (per point) selects; all with no mask.
+  std::vector<double> selected_volumes(std::span<const double> point_volumes, std::span<const char> mask = {}) const;
+  // Per element, the vertex values of its field: the linear field through its 4 points' values
+  // (all four the point's value for one point).
+  std::vector<std::array<double, 4>> vertex_values(std::span<const double> field) const;
+
+ private:
+  std::span<const Tetrahedron> tetrahedra_;
+  std::size_t points_;
+  std::array<std::array<double, 4>, 4> vertex_from_points_{};  // c = Λ⁻¹ f, Λ_qi = λ_i(point q)
 };
 
 // The part of the tetrahedron where the linear field with vertex values `vertex_value` exceeds
@@ -133,21 +146,20 @@ struct TetrahedronPart {
 };
 TetrahedronPart part_above(const std::array<double, 4>& vertex_value, double limit);
 
-// The volume where the elements' field (above) exceeds `limit`, with its centroid. With a mask
-// (per point), each element's volume above counts by the share of its points' volume the mask
-// selects.
+// The volume where the elements' field (TissueElements::vertex_values) exceeds `limit`, with its
+// centroid; each element counts by its volume in `element_volumes` (TissueElements::
+// selected_volumes: a mask's share of it).
 struct VolumeAbove {
   double volume = 0.0;  // m³
   Point3 centroid{};    // reference position, metres (zeros when the volume is empty)
 };
-VolumeAbove volume_above(std::span<const double> field, std::span<const double> volumes, const TissueElements& elements,
-                         double limit, std::span<const char> mask = {});
+VolumeAbove volume_above(const TissueElements& elements, std::span<const std::array<double, 4>> vertex_values,
+                         std::span<const double> element_volumes, double limit);
 
-// The volume-weighted percentile (0 < percent < 100) of the elements' field over the elements
-// the mask selects (by their points' volume, as volume_above counts; all when the mask is empty),
-// as defined above: the smallest v whose volume above is at most (1 - percent/100) of the selected
-// volume.
-double volume_percentile(std::span<const double> field, std::span<const double> volumes, const TissueElements& elements,
-                         double percent, std::span<const char> mask = {});
+// The volume-weighted percentile (0 < percent < 100) of the elements' field over the elements'
+// volumes (as volume_above counts them), as defined above: the smallest v whose volume above is
+// at most (1 - percent/100) of their sum.
+double volume_percentile(std::span<const std::array<double, 4>> vertex_values, std::span<const double> element_volumes,
+                         double percent);
 
 }  // namespace needlefem::fields
