@@ -63,10 +63,23 @@ double BevelTip::length() const {
   return fillet_centre_z() + fillet;  // top of the arc; for tau = 0 the sharp tip
 }
 
-double BevelTip::profile_top(double x) const {
-  if (x >= fillet_tangent_x()) return shaft + (radius - x) / std::tan(bevel_rad);
-  const double u = x - fillet_centre_x();
-  return fillet_centre_z() + std::sqrt(std::max(0.0, fillet * fillet - u * u));
+double BevelTip::profile_top(double x) const { return BevelProfile(*this).top(x); }
+
+BevelProfile::BevelProfile(const BevelTip& tip)
+    : radius(tip.radius),
+      fillet(tip.fillet),
+      shaft(tip.shaft),
+      cos_bevel(std::cos(tip.bevel_rad)),
+      sin_bevel(std::sin(tip.bevel_rad)),
+      tan_bevel(std::tan(tip.bevel_rad)),
+      centre_x(tip.fillet_centre_x()),
+      centre_z(tip.fillet_centre_z()),
+      tangent_x(tip.fillet_tangent_x()) {}
+
+double BevelProfile::top(double x) const {
+  if (x >= tangent_x) return shaft + (radius - x) / tan_bevel;
+  const double u = x - centre_x;
+  return centre_z + std::sqrt(std::max(0.0, fillet * fillet - u * u));
 }
 
 double BevelTip::analytic_volume() const {

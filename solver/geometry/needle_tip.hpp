@@ -47,6 +47,19 @@ struct BevelTip {
   std::vector<RuleViolation> violations() const;
 };
 
+// A bevel tip's side profile with the bevel angle's trigonometry evaluated once, for code that
+// asks for the profile at every contact quadrature point of every residual (the needle obstacle).
+// The same numbers as BevelTip's functions.
+struct BevelProfile {
+  BevelProfile() = default;  // no tip: every number 0
+  explicit BevelProfile(const BevelTip& tip);
+  double top(double x) const;  // BevelTip::profile_top
+
+  double radius = 0, fillet = 0, shaft = 0;
+  double cos_bevel = 0, sin_bevel = 0, tan_bevel = 0;
+  double centre_x = 0, centre_z = 0, tangent_x = 0;  // fillet_centre_x, fillet_centre_z, fillet_tangent_x
+};
+
 struct CompliantTip {
   double radius = 0, shaft = 0, neck_length = 0, neck_diameter = 0, head_length = 0, point_length = 0;
   double length() const;

@@ -44,9 +44,9 @@ struct ProfileDistance {
   double arc_distance = 0.0;
 };
 
-ProfileDistance profile_distance(const BevelTip& tip, double x, double z) {
-  const double ca = std::cos(tip.bevel_rad), sa = std::sin(tip.bevel_rad), tau = tip.fillet;
-  const double dx = x - tip.fillet_centre_x(), dz = z - tip.fillet_centre_z();
+ProfileDistance profile_distance(const BevelProfile& tip, double x, double z) {
+  const double ca = tip.cos_bevel, sa = tip.sin_bevel, tau = tip.fillet;
+  const double dx = x - tip.centre_x, dz = z - tip.centre_z;
   // Wedge W': outward normals m_b = (cos α, sin α) (bevel), m_g = (-1, 0) (generator); its rays
   // leave the apex along d_b = (sin α, -cos α) and d_g = (0, -1).
   const double a = ca * dx + sa * dz, b = -dx;
@@ -57,6 +57,28 @@ ProfileDistance profile_distance(const BevelTip& tip, double x, double z) {
   if (!(d > 0.0)) return {-tau, ca, sa};  // sharp tip (τ = 0) exactly at its apex
   return {d - tau, dx / d, dz / d, d};
 }
+
+// The edge curve c(θ) = (r cos θ, r sin θ, h(r cos θ)) of the core's cylinder and profile, with
+// c'(θ) and c''(θ) (h' and h'' of the bevel line or the arc).
+struct CurvePoint {
+  Point3 c, c1, c2;
+};
+
+CurvePoint edge_curve(const BevelProfile& core, double theta) {
+  const double r = core.radius, tau = core.fillet, slope = -1.0 / core.tan_bevel;
+  const double s = std::sin(theta), co = std::cos(theta), x = r * co;
+  double h1 = slope, h2 = 0.0;
+  if (x < core.tangent_x) {
+    const double u = x - core.centre_x, root = std::sqrt(std::max(tau * tau - u * u, 0.0));
+    h1 = -u / root;
+    h2 = -tau * tau / (root * root * root);
+  }
+  return CurvePoint{{x, r * s, core.top(x)}, {-r * s, r * co, -h1 * r * s},
+                    {-r * co, -r * s, h2 * r * r * s * s - h1 * r * co}};
+}
+
+// The samples of the edge curve that start its closest-point search, θ_k = -π + 2πk/kEdgeSamples.
+double edge_sample_angle(int k) { return -kPi + 2.0 * kPi * k / kEdgeSamples; }
 
 struct Candidate {
   double gap;
@@ -84,8 +106,11 @@ RigidNeedle::RigidNeedle(const BevelTip& tip, const NeedleMotion& motion, double
   if (!violations.empty()) throw std::invalid_argument("RigidNeedle: " + violations.front().message);
   // Every face moved inwards by the edge radius ρ: radius and fillet shrink by ρ, the bevel line
   // moves by ρ along its normal (heel lower by ρ tan(α/2)); the fillet centre stays put.
-  core_ = {tip.radius - edge_radius_, tip.bevel_rad, tip.fillet - edge_radius_,
-           tip.shaft - edge_radius_ * std::tan(0.5 * tip.bevel_rad)};
+  core_ = BevelProfile(BevelTip{tip.radius - edge_radius_, tip.bevel_rad, tip.fillet - edge_radius_,
+                                tip.shaft - edge_radius_ * std::tan(0.5 * tip.bevel_rad)});
+  if (tip.rounded()) return;
+  edge_samples_.resize(kEdgeSamples + 1);
+  for (int k = 0; k <= kEdgeSamples; ++k) edge_samples_[k] = edge_curve(core_, edge_sample_angle(k)).c;
 }
 
 ObstacleProjection RigidNeedle::project_rounded(const Point3& xi) const {
@@ -133,32 +158,16 @@ ObstacleProjection RigidNeedle::project_bevel(const Point3& xi) const {
 }
 
 ObstacleProjection RigidNeedle::project_on_edge(const Point3& xi) const {
-  const double r = core_.radius, tau = core_.fillet, xc = core_.fillet_centre_x(), xt = core_.fillet_tangent_x();
-  const double slope = -1.0 / std::tan(core_.bevel_rad);
-  // c(θ), c'(θ), c''(θ) of c(θ) = (r cos θ, r sin θ, h(r cos θ)), h' and h'' of the bevel line or the arc.
-  struct CurvePoint {
-    Point3 c, c1, c2;
-  };
-  auto curve = [&](double theta) {
-    const double s = std::sin(theta), co = std::cos(theta), x = r * co;
-    double h1 = slope, h2 = 0.0;
-    if (x < xt) {
-      const double u = x - xc, root = std::sqrt(std::max(tau * tau - u * u, 0.0));
-      h1 = -u / root;
-      h2 = -tau * tau / (root * root * root);
-    }
-    return CurvePoint{{x, r * s, core_.profile_top(x)}, {-r * s, r * co, -h1 * r * s},
-                      {-r * co, -r * s, h2 * r * r * s * s - h1 * r * co}};
-  };
-  auto distance2 = [&](double theta) {
-    const Point3 c = curve(theta).c;
+  auto curve = [&](double theta) { return edge_curve(core_, theta); };
+  auto distance2_to = [&](const Point3& c) {
     const Point3 d{xi[0] - c[0], xi[1] - c[1], xi[2] - c[2]};
     return dot(d, d);
   };
+  auto distance2 = [&](double theta) { return distance2_to(curve(theta).c); };
   int best = 0;
-  double best_d2 = distance2(-kPi);
+  double best_d2 = distance2_to(edge_samples_[0]);
   for (int k = 1; k <= kEdgeSamples; ++k) {
-    const double d2 = distance2(-kPi + 2.0 * kPi * k / kEdgeSamples);
+    const double d2 = distance2_to(edge_samples_[k]);
     if (d2 < best_d2) best = k, best_d2 = d2;
   }
   const double step = 2.0 * kPi / kEdgeSamples;

@@ -54,6 +54,7 @@
 #pragma once
 
 #include <memory>
+#include <vector>
 
 #include "geometry/needle_motion.hpp"
 #include "geometry/needle_tip.hpp"
@@ -114,7 +115,9 @@ class RigidNeedle final : public Needle {
   ObstacleProjection project_bevel(const Point3& xi) const;
   ObstacleProjection project_on_edge(const Point3& xi) const;
 
-  BevelTip tip_, core_;
+  BevelTip tip_;
+  BevelProfile core_;               // the tip with every face moved inwards by the edge radius
+  std::vector<Point3> edge_samples_;  // the core's edge curve at edge_sample_angle(k), k = 0..kEdgeSamples
   std::shared_ptr<const NeedleShape> shape_;  // null: the bevel tip_
   NeedleMotion motion_;
   double edge_radius_ = 0.0;
