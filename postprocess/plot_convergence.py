@@ -47,11 +47,6 @@ def draw_limit(ax, limit, shown, squash=10):
         ax.plot([], [], color="C3", linestyle="--", label=f"limit {limit:g} ({'above' if limit > high else 'below'}, off scale)")
 
 
-# The history.csv point maximum of each limited field (summary "max" names differ).
-POINT_MAXIMUM_OF_LIMIT = {"log_strain": "max_log_strain", "strain_rate_per_s": "max_strain_rate",
-                          "stress_pa": "max_von_mises"}
-
-
 def number(text):
     return float(text) if text not in ("", None) else math.nan
 
@@ -63,9 +58,11 @@ def plot_history(args, report):
         return None
     with open(path) as f:
         rows = list(csv.DictReader(f))
-    limits = {name: v["limit"] for name, v in report.get("verdicts", {}).items()}
-    limit_of = {f"critical_distance_{name}": limit for name, limit in limits.items()}
-    limit_of.update({POINT_MAXIMUM_OF_LIMIT[name]: limit for name, limit in limits.items() if name in POINT_MAXIMUM_OF_LIMIT})
+    # Each limit's history columns by role (critical_distance, point_max), as its summaries name them.
+    verdicts = report.get("verdicts", {}).values()
+    limit_of = {column: v["limit"] for v in verdicts for column in v["history_columns"].values()}
+    columns_of = {role: [v["history_columns"][role] for v in verdicts if role in v["history_columns"]]
+                  for role in ("critical_distance", "point_max")}
     present = list(dict.fromkeys(r["quantity"] for r in rows))
     if args.history:
         quantities = args.history.split(",")
@@ -73,8 +70,8 @@ def plot_history(args, report):
         if unknown:
             sys.exit(f"{path}: no quantity {', '.join(unknown)}")
     else:
-        quantities = [q for q in present if q.startswith("critical_distance_") and q in limit_of] or [
-            q for q in present if q in limit_of]
+        quantities = [q for q in present if q in columns_of["critical_distance"]] or [
+            q for q in present if q in columns_of["point_max"]]
     if not quantities:
         return None
     level_columns = [c for c in rows[0] if c.startswith("f_level")]

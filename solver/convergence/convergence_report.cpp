@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -20,9 +19,6 @@ using json = nlohmann::json;
 // Safety metrics in the limit's own unit (a field value), which get a verdict; the others
 // (volume above the limit, its region fraction) are converged but not compared.
 constexpr const char* kComparedSafetyMetrics[] = {"point_max", "critical_distance", "percentile"};
-// Point maxima under summary "max" that a limit of summary "thresholds" applies to.
-const std::map<std::string, std::string> kMaximumLimit = {
-    {"log_strain", "log_strain"}, {"strain_rate_per_s", "strain_rate_per_s"}, {"von_mises_pa", "stress_pa"}};
 constexpr const char* kNeedleLoads[] = {"max_axial_force_n", "max_torque_n_m"};
 
 double number(const json& j, const json::json_pointer& pointer) {
@@ -44,27 +40,40 @@ struct MetricKey {
   bool compared = false;
 };
 
+// The limits of a summary's "safety": each limit's name and entry.
+std::vector<std::pair<std::string, const json*>> safety_limits(const json& summary) {
+  std::vector<std::pair<std::string, const json*>> out;
+  if (!summary.is_object() || !summary.contains("safety") || !summary["safety"].is_object()) return out;
+  for (const auto& [limit, entry] : summary["safety"].items())
+    if (limit != "settings" && entry.is_object()) out.emplace_back(limit, &entry);
+  return out;
+}
+
+// The limit whose point maximum is summary "max".<name> (thresholds.<limit>.max_key), or "".
+std::string limit_of_maximum(const json& summary, const std::string& name) {
+  if (!summary.is_object() || !summary.contains("thresholds") || !summary["thresholds"].is_object()) return "";
+  for (const auto& [limit, entry] : summary["thresholds"].items())
+    if (entry.is_object() && entry.value("max_key", "") == name) return limit;
+  return "";
+}
+
 // The metrics one summary reports, in the order of the header comment.
 std::vector<MetricKey> metrics_of(const json& summary) {
   std::vector<MetricKey> out;
   if (!summary.is_object()) return out;
-  if (summary.contains("safety") && summary["safety"].is_object())
-    for (const auto& [limit, entry] : summary["safety"].items()) {
-      if (limit == "settings" || !entry.is_object()) continue;
-      for (const auto& [name, metric] : entry.items()) {
-        if (!metric.is_object() || !metric.contains("value") || !metric["value"].is_number()) continue;
-        const bool compared = std::find(std::begin(kComparedSafetyMetrics), std::end(kComparedSafetyMetrics), name) !=
-                              std::end(kComparedSafetyMetrics);
-        out.push_back({fmt::format("safety.{}.{}", limit, name), fmt::format("/safety/{}/{}/value", limit, name), limit,
-                       compared});
-      }
+  for (const auto& [limit, entry] : safety_limits(summary))
+    for (const auto& [name, metric] : entry->items()) {
+      if (!metric.is_object() || !metric.contains("value") || !metric["value"].is_number()) continue;
+      const bool compared = std::find(std::begin(kComparedSafetyMetrics), std::end(kComparedSafetyMetrics), name) !=
+                            std::end(kComparedSafetyMetrics);
+      out.push_back({fmt::format("safety.{}.{}", limit, name), fmt::format("/safety/{}/{}/value", limit, name), limit,
+                     compared});
     }
   if (summary.contains("max") && summary["max"].is_object())
     for (const auto& [name, maximum] : summary["max"].items()) {
       if (!maximum.is_object() || !maximum.contains("value") || !maximum["value"].is_number()) continue;
-      const auto limit = kMaximumLimit.find(name);
-      out.push_back({"max." + name, fmt::format("/max/{}/value", name),
-                     limit == kMaximumLimit.end() ? "" : limit->second, limit != kMaximumLimit.end()});
+      const std::string limit = limit_of_maximum(summary, name);
+      out.push_back({"max." + name, fmt::format("/max/{}/value", name), limit, !limit.empty()});
     }
   for (const char* load : kNeedleLoads)
     if (!std::isnan(number(summary, json::json_pointer(fmt::format("/needle/{}", load)))))
@@ -152,7 +161,14 @@ Report build_report(std::vector<LevelRun> levels, const Settings& settings) {
         }
       if (decider) break;
     }
-    if (decider) report.limits.push_back({name, decider->limit, decider->metric, *decider->verdict});
+    if (!decider) continue;
+    LimitVerdict limit{name, decider->limit, decider->metric, *decider->verdict, json()};
+    // Its history.csv columns, from the finest level that names them.
+    const json::json_pointer at(fmt::format("/safety/{}/history_columns", name));
+    for (auto run = runs.rbegin(); run != runs.rend() && limit.history_columns.is_null(); ++run)
+      if (run->status == "completed" && run->summary.contains(at) && run->summary.at(at).is_object())
+        limit.history_columns = run->summary.at(at);
+    report.limits.push_back(std::move(limit));
   }
   return report;
 }
@@ -247,7 +263,11 @@ json report_json(const Report& report) {
   out["metrics"] = rows;
   json verdicts = json::object();
   for (const auto& limit : report.limits)
-    verdicts[limit.limit_name] = {{"verdict", to_string(limit.verdict)}, {"metric", limit.metric}, {"limit", limit.limit}};
+    verdicts[limit.limit_name] = {{"verdict", to_string(limit.verdict)},
+                                  {"metric", limit.metric},
+                                  {"limit", limit.limit},
+                                  {"history_columns", limit.history_columns.is_null() ? json::object()
+                                                                                       : limit.history_columns}};
   out["verdicts"] = verdicts;
   out["warnings"] = report.warnings;
   if (report.levels.size() >= 4)

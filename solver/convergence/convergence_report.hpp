@@ -10,9 +10,8 @@
 //                                  safety.<limit>.limit; compared with the limit when the
 //                                  metric is in the limit's unit (point_max, critical_distance,
 //                                  percentile)
-//   max.<quantity>.value           point maxima; log_strain, strain_rate_per_s and von_mises_pa
-//                                  are compared with thresholds.{log_strain,strain_rate_per_s,
-//                                  stress_pa}.limit
+//   max.<quantity>.value           point maxima; the one a limit names (thresholds.<limit>.max_key)
+//                                  is compared with thresholds.<limit>.limit
 //   needle.max_axial_force_n, needle.max_torque_n_m
 // The verdict of a limit is that of safety.<limit>.critical_distance, else of
 // safety.<limit>.point_max, else of the point maximum under "max" (DESIGN.md §2b: point maxima
@@ -57,6 +56,7 @@ struct LimitVerdict {
   double limit = 0;
   std::string metric;  // the row that decided
   Verdict verdict = Verdict::undecided;
+  nlohmann::json history_columns;  // safety.<limit>.history_columns: its history.csv columns by role
 };
 
 struct Report {

@@ -52,10 +52,6 @@ using fields::kScalarQuantities;
 constexpr double kMmPerM = 1e3;
 constexpr double kStepReportSeconds = 10.0;
 
-// summary.json names of the scalar quantities, in fields::ScalarQuantity order.
-constexpr std::array<const char*, kScalarQuantities> kSummaryNames{
-    "von_mises_pa", "principal_stress_pa", "log_strain", "strain_rate_per_s", "equivalent_strain_rate_per_s",
-    "pressure_pa"};
 
 
 double peak_rss_mb() {
@@ -132,7 +128,7 @@ class HistoryCsv {
     if (!stream_) throw std::runtime_error(fmt::format("{}: cannot write: {}", file.string(), io::system_reason(errno)));
     stream_ << fmt::format("{}", fmt::join(output::kHistoryCounterColumns, ","));
     for (const auto& q : fields::scalar_quantities()) {
-      const std::string name = std::string("max_") + q.name;
+      const std::string name = fields::history_maximum_column(q);
       stream_ << "," << name << output::history_position_columns(name);
     }
     for (const auto& s : surfaces) stream_ << fmt::format(",reaction_{0}_x_n,reaction_{0}_y_n,reaction_{0}_z_n", s);
@@ -182,7 +178,7 @@ nlohmann::json summary_json(const Case& c, const RunSpecs& specs, const material
   s["time_reached_s"] = record.time_reached_s;
   s["output_times"] = record.output_times_written;
   for (int q = 0; q < kScalarQuantities; ++q)
-    if (std::isfinite(record.maxima[q].value)) s["max"][kSummaryNames[q]] = record.maxima[q].to_json();
+    if (std::isfinite(record.maxima[q].value)) s["max"][fields::scalar_quantities()[q].summary_key] = record.maxima[q].to_json();
   s["max_note"] = "maximum over all tissue quadrature points and output times; position_mm is the point's "
                   "reference (undeformed) position. strain_rate_per_s is the max principal strain rate, the one the "
                   "strain-rate limit judges; equivalent_strain_rate_per_s, sqrt(2/3 D:D), is not judged (see "

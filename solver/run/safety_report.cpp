@@ -49,6 +49,9 @@ enum WindowVariant { kHalfWindow, kDoubleWindow, kInstantaneous };
 constexpr const char* kWindowVariantNames[] = {"critical_distance_half_window", "critical_distance_double_window",
                                                "critical_distance_instantaneous"};
 
+// history.csv's column of a limit's critical-distance value.
+std::string critical_distance_column(const char* limit_name) { return fmt::format("critical_distance_{}", limit_name); }
+
 nlohmann::json millimetres(const Point3& x) { return {x[0] * kMmPerM, x[1] * kMmPerM, x[2] * kMmPerM}; }
 
 // Per point: within `distance` of a node of the cavity surface (the needle's imprint).
@@ -190,9 +193,9 @@ void SafetyReport::keep_maximum(std::size_t i, double t, const Now& now, const s
 std::string SafetyReport::history_header() const {
   std::string header;
   for (const Limit& limit : limits_)
-    header += fmt::format(",critical_distance_{0}{1},volume_above_{0}_mm3,region_fraction_above_{0},percentile_{0}{2}",
-                          limit.name, output::history_position_columns(std::string("critical_distance_") + limit.name),
-                          limit.windowed ? fmt::format(",critical_distance_instantaneous_{}", limit.name) : "");
+    header += fmt::format(",{0}{1},volume_above_{2}_mm3,region_fraction_above_{2},percentile_{2}{3}",
+                          critical_distance_column(limit.name), output::history_position_columns(critical_distance_column(limit.name)),
+                          limit.name, limit.windowed ? fmt::format(",critical_distance_instantaneous_{}", limit.name) : "");
   return header;
 }
 
@@ -223,7 +226,10 @@ nlohmann::json SafetyReport::summary(const std::array<MaximumOverTime, fields::k
     const Limit& limit = limits_[i];
     const MaximumOverTime& point = point_maxima[limit.quantity];
     if (!std::isfinite(point.value)) continue;  // no output time completed
-    thresholds[limit.name] = {{"limit", limit.limit}, {"max", point.value}, {"pass", point.value <= limit.limit}};
+    thresholds[limit.name] = {{"limit", limit.limit},
+                              {"max", point.value},
+                              {"pass", point.value <= limit.limit},
+                              {"max_key", fields::scalar_quantities()[limit.quantity].summary_key}};
     const OverTime& max = over_time_[i];
     // A run that failed while writing an output time has its point maxima but not this time's
     // critical-distance values: the failure's summary then says what it has, not a second error.
@@ -243,6 +249,8 @@ nlohmann::json SafetyReport::summary(const std::array<MaximumOverTime, fields::k
         {"region_fraction_above_limit", {{"value", max.region_fraction.value}, {"time_s", max.region_fraction.time_s}}},
         {"percentile", {{"value", max.percentile.value}, {"time_s", max.percentile.time_s}}},
         {"quantity", kLimitText[i].quantity},
+        {"history_columns", {{"critical_distance", critical_distance_column(limit.name)},
+                             {"point_max", fields::history_maximum_column(fields::scalar_quantities()[limit.quantity])}}},
         {"verdict", max.critical_distance.value <= limit.limit ? "pass" : "fail"}};
     if (limit.windowed) {
       safety[limit.name]["window_s"] = window_s_;

@@ -27,8 +27,9 @@
 //   stretching, 2/sqrt(3) times larger in simple shear, it counts shear the tests did not apply.
 //   history.csv   per output time: critical-distance value and position, volume above, region
 //                 fraction and percentile of each limited quantity;
-//   summary.json  "verdict" (the run's), "thresholds" (point maxima, as before) and "safety" (all
-//                 of the above, each limit naming its quantity).
+//   summary.json  "verdict" (the run's), "thresholds" (point maxima, as before, each with max_key,
+//                 its key under "max") and "safety" (all of the above, each limit naming its
+//                 quantity and its history.csv columns), so that readers need no map of names.
 #pragma once
 
 #include <array>

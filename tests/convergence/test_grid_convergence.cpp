@@ -102,7 +102,8 @@ TEST(GridConvergence, Verdicts) {
 nlohmann::json summary(double point_max, double critical, double volume, bool with_safety) {
   nlohmann::json s = {{"status", "completed"},
                       {"max", {{"log_strain", {{"value", point_max}}}, {"principal_stress_pa", {{"value", 10.0}}}}},
-                      {"thresholds", {{"log_strain", {{"limit", 0.19}, {"max", point_max}, {"pass", true}}}}},
+                      {"thresholds",
+                       {{"log_strain", {{"limit", 0.19}, {"max", point_max}, {"pass", true}, {"max_key", "log_strain"}}}}},
                       {"needle", {{"max_axial_force_n", 0.01}}},
                       {"mesh", {{"tets", 1000}}}};
   if (with_safety)
@@ -112,6 +113,8 @@ nlohmann::json summary(double point_max, double critical, double volume, bool wi
                      {"point_max", {{"value", point_max}}},
                      {"critical_distance", {{"value", critical}}},
                      {"volume_above_limit_mm3", {{"value", volume}}},
+                     {"history_columns", {{"critical_distance", "critical_distance_log_strain"},
+                                          {"point_max", "max_log_strain"}}},
                      {"verdict", "pass"}}}};
   return s;
 }
@@ -143,6 +146,9 @@ TEST(ConvergenceReport, CriticalDistanceDecides) {
             "metric,limit,limit_value,f_level0,f_level1,f_level2,observed_order,f_extrapolated,gci_fine,band_low,"
             "band_high,verdict,note");
   EXPECT_NE(verdict_line(report).find("converge: PASS"), std::string::npos) << verdict_line(report);
+  // The limit's history columns, as its summaries name them, for converge_history.csv's readers.
+  EXPECT_EQ(report_json(report)["verdicts"]["log_strain"]["history_columns"],
+            nlohmann::json({{"critical_distance", "critical_distance_log_strain"}, {"point_max", "max_log_strain"}}));
   ASSERT_EQ(report.warnings.size(), 1u);  // every level has 1000 tets
   EXPECT_NE(report.warnings[0].find("same mesh"), std::string::npos) << report.warnings[0];
 }

@@ -283,8 +283,9 @@ def brain_tip(args):
     for name, (limit, max_key) in THRESHOLDS.items():
         entry = summary["thresholds"][name]
         check(entry["limit"] == limit and entry["max"] == summary["max"][max_key]["value"]
-              and entry["pass"] == (entry["max"] <= limit),
-              f"thresholds.{name}: limit {entry['limit']}, max {entry['max']:.4g}, pass {entry['pass']}")
+              and entry["pass"] == (entry["max"] <= limit) and entry["max_key"] == max_key,
+              f"thresholds.{name}: limit {entry['limit']}, max {entry['max']:.4g}, pass {entry['pass']}, "
+              f"max_key {entry['max_key']}")
     lateral = [math.hypot(float(r["needle_lateral_force_xi_n"]), float(r["needle_lateral_force_eta_n"])) for r in rows]
     for row, f_lat in zip(rows[1:], lateral[1:]):
         f = vector(row, "needle_force", "n")
@@ -302,6 +303,11 @@ def brain_tip(args):
               f"{entry['percentile']['value']:.4g}, volume above {entry['volume_above_limit_mm3']['value']:.3g} mm^3")
         close(cd, max(float(r[f"critical_distance_{name}"]) for r in rows), 1e-8,
               f"safety.{name}.critical_distance = max of history's")
+        columns = entry["history_columns"]
+        check(columns["critical_distance"] == f"critical_distance_{name}",
+              f"safety.{name}.history_columns.critical_distance {columns['critical_distance']}")
+        close(summary["max"][max_key]["value"], max(float(r[columns["point_max"]]) for r in rows), 1e-8,
+              f"max.{max_key} = max of history's {columns['point_max']} (safety.{name}.history_columns.point_max)")
         check(entry["verdict"] == ("pass" if cd <= limit else "fail"), f"safety.{name}.verdict {entry['verdict']}")
         check(entry["critical_distance_double_radius"]["value"] <= entry["critical_distance_half_radius"]["value"],
               f"safety.{name}: a larger ball averages lower near the needle "

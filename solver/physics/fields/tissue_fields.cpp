@@ -11,14 +11,17 @@
 namespace needlefem::fields {
 
 const std::array<ScalarQuantityInfo, kScalarQuantities>& scalar_quantities() {
-  static const std::array<ScalarQuantityInfo, kScalarQuantities> info{{{"von_mises", "Pa"},
-                                                                        {"max_principal_stress", "Pa"},
-                                                                        {"log_strain", "1"},
-                                                                        {"strain_rate", "1/s"},
-                                                                        {"equivalent_strain_rate", "1/s"},
-                                                                        {"pressure", "Pa"}}};
+  static const std::array<ScalarQuantityInfo, kScalarQuantities> info{
+      {{"von_mises", "Pa", "von_mises_pa"},
+       {"max_principal_stress", "Pa", "principal_stress_pa"},
+       {"log_strain", "1", "log_strain"},
+       {"strain_rate", "1/s", "strain_rate_per_s"},
+       {"equivalent_strain_rate", "1/s", "equivalent_strain_rate_per_s"},
+       {"pressure", "Pa", "pressure_pa"}}};
   return info;
 }
+
+std::string history_maximum_column(const ScalarQuantityInfo& quantity) { return std::string("max_") + quantity.name; }
 
 TissueFieldEvaluator::TissueFieldEvaluator(const mechanics::MechanicsSystem& system, const TetMesh& mesh,
                                            double density_kg_per_m3)

@@ -37,10 +37,13 @@ enum ScalarQuantity {
   kScalarQuantities
 };
 struct ScalarQuantityInfo {
-  const char* name;  // field and CSV name
+  const char* name;         // result.h5 field name; history.csv has its maximum as max_<name>
   const char* unit;
+  const char* summary_key;  // its maximum's key under summary.json "max"
 };
 const std::array<ScalarQuantityInfo, kScalarQuantities>& scalar_quantities();
+// history.csv's column of a quantity's maximum over the tissue points.
+std::string history_maximum_column(const ScalarQuantityInfo& quantity);
 
 struct PointMaximum {
   double value = 0.0;
