@@ -66,6 +66,13 @@ TEST(SafetyMetrics, HomogeneousFieldAveragesToItsValue) {
   const std::vector<double> field(c.positions.size(), 0.137);
   const BallAverager averager = averager_of(c, 0.2e-3);
   EXPECT_NEAR(averager.maximum(field).value, 0.137, 1e-14);
+  // A zero field (every field at rest): every ball ties exactly, and the tie goes to the first
+  // centre in lattice order, the corner voxel's (the search stops after the first block, which
+  // no later block can beat, and nor can it tie in an earlier slot).
+  const LocatedValue at_rest = averager.maximum(std::vector<double>(c.positions.size(), 0.0));
+  EXPECT_EQ(at_rest.value, 0.0);
+  const double s = 0.2e-3 / 4;
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(at_rest.position[i], s / 2, 1e-15) << i;
   EXPECT_NEAR(averager.average_around({0.0, 0.0, 0.0}, field).value, 0.137, 1e-14);  // an eighth of a ball
 }
 

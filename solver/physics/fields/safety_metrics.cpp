@@ -242,7 +242,7 @@ LocatedValue BallAverager::maximum(std::span<const double> field) const {
     candidates.push_back({bound, static_cast<int>(b)});
   }
   // Descending bound, equal bounds in lattice order. The threads take candidates in that order
-  // and stop at the first whose bound is below the best average found so far; the block holding
+  // and stop at the first that cannot beat the best average found so far; the block holding
   // the true maximum always has a bound at least that large, so it is always evaluated. Equal
   // averages go to the earliest (candidate, voxel): the answer depends neither on hashing nor on
   // threads.
@@ -260,9 +260,16 @@ LocatedValue BallAverager::maximum(std::span<const double> field) const {
   {
     for (std::size_t c = next++; c < candidates.size(); c = next++) {
       double shared_best;
-#pragma omp atomic read
-      shared_best = best;
-      if (candidates[c].bound < shared_best) break;  // and so are all later candidates
+      std::size_t shared_slot;
+#pragma omp critical(needlefem_ball_maximum)
+      shared_best = best, shared_slot = best_slot;
+      // Below the best average, or equal to it after its candidate (whose voxels' slots come
+      // first, and equal averages go to the earliest): so are all later candidates. Without the
+      // second case a field constant over the tissue (every field at t = 0) had every centre
+      // averaged.
+      if (candidates[c].bound < shared_best ||
+          (candidates[c].bound == shared_best && c * kBlockVoxels > shared_slot))
+        break;
       const Block& block = blocks_[candidates[c].block];
       double block_best = -std::numeric_limits<double>::infinity();
       std::size_t block_slot = kNone;

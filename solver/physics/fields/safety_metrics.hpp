@@ -46,7 +46,7 @@
 // the maximisation visits few centres: voxels are grouped in blocks of 4³ (edge ℓ), a ball's
 // average is at most the largest point value in the 27 blocks around its centre's block, so
 // blocks are visited in descending order of that bound and the search stops once the bound
-// cannot beat the best average found.
+// cannot beat the best average found (nor tie it in an earlier slot).
 #pragma once
 
 #include <cstdint>
