@@ -123,19 +123,30 @@ TEST(SafetyMetrics, MaximumEqualsTheBruteForceMaximumOfEveryBall) {
   const Cloud c = cube(12);
   std::mt19937 random(7);
   std::uniform_real_distribution<double> uniform(-1.0, 1.0);
-  std::vector<double> field;
-  for (std::size_t q = 0; q < c.positions.size(); ++q) field.push_back(uniform(random));
-  for (double l : {0.15e-3, 0.4e-3}) {
-    const BallAverager averager = averager_of(c, l);
-    const double s = l / 4;
-    const int centres = static_cast<int>(kSide / s);
-    double brute = -1e300;
-    for (int i = 0; i < centres; ++i)
-      for (int j = 0; j < centres; ++j)
-        for (int k = 0; k < centres; ++k)
-          brute = std::max(brute, averager.average_around({(i + 0.5) * s, (j + 0.5) * s, (k + 0.5) * s}, field).value);
-    EXPECT_DOUBLE_EQ(averager.maximum(field).value, brute) << l;
+  // A rough field, where the rims' bounds are loose, and a smooth peak, where they are tight and
+  // skip most rims next to the best ball.
+  std::vector<double> rough, peak;
+  for (const Point3& x : c.positions) {
+    rough.push_back(uniform(random));
+    const double dx = x[0] - 0.37e-3, dy = x[1] - 0.52e-3, dz = x[2] - 0.61e-3;
+    peak.push_back(std::exp(-(dx * dx + dy * dy + dz * dz) / (0.2e-3 * 0.2e-3)));
   }
+  for (const auto& field : {rough, peak})
+    for (double l : {0.15e-3, 0.4e-3}) {
+      const BallAverager averager = averager_of(c, l);
+      const double s = l / 4;
+      const int centres = static_cast<int>(kSide / s);
+      LocatedValue brute{-1e300, {}};
+      for (int i = 0; i < centres; ++i)
+        for (int j = 0; j < centres; ++j)
+          for (int k = 0; k < centres; ++k) {
+            const LocatedValue v = averager.average_around({(i + 0.5) * s, (j + 0.5) * s, (k + 0.5) * s}, field);
+            if (v.value > brute.value) brute = v;
+          }
+      const LocatedValue max = averager.maximum(field);
+      EXPECT_DOUBLE_EQ(max.value, brute.value) << l;
+      for (int i = 0; i < 3; ++i) EXPECT_NEAR(max.position[i], brute.position[i], 1e-15) << l;
+    }
 }
 
 TEST(SafetyMetrics, BallCentresLieInTheTissue) {

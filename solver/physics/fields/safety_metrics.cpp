@@ -19,6 +19,9 @@ constexpr long long kKeyBias = 1LL << 20;   // lattice indices from -2^20 to 2^2
 // The bisection for a percentile stops at this share of the field's range (far below the 9
 // digits the history and summary print of it).
 constexpr double kPercentileTolerance = 1e-11;
+// A ball's bound must fall below the best average by this share of their magnitudes for the
+// ball to be skipped: far above the rounding of either sum, far below any difference that counts.
+constexpr double kBoundMargin = 1e-9;
 
 bool selected(std::span<const char> mask, std::size_t q) { return mask.empty() || mask[q]; }
 
@@ -168,6 +171,7 @@ BallAverager::Sums BallAverager::accumulate(std::span<const double> field) const
   sums.weighted.assign(n, 0.0);
   sums.volume.assign(n, 0.0);
   sums.largest.assign(n, -std::numeric_limits<double>::infinity());
+  sums.smallest.assign(n, std::numeric_limits<double>::infinity());
   for (std::size_t b = 0; b < blocks_.size(); ++b)
     for (int l = 0; l < kBlockVoxels; ++l) {
       const std::size_t v = b * kBlockVoxels + l;
@@ -175,6 +179,7 @@ BallAverager::Sums BallAverager::accumulate(std::span<const double> field) const
         sums.weighted[v] += volumes_[p] * sums.field[p];
         sums.volume[v] += volumes_[p];
         sums.largest[v] = std::max(sums.largest[v], sums.field[p]);
+        sums.smallest[v] = std::min(sums.smallest[v], sums.field[p]);
       }
     }
   return sums;
@@ -210,6 +215,50 @@ double BallAverager::average(const Sums& sums, int block, int voxel) const {
     }
   }
   return volume > 0.0 ? weighted / volume : 0.0;
+}
+
+double BallAverager::average_bound(const Sums& sums, int block, int voxel) const {
+  const Block& centre_block = blocks_[block];
+  double inside_weighted = 0.0, inside_volume = 0.0;
+  // Per rim voxel: its volume V, sum S = Σ w f, largest L and smallest m value. The ball holds a
+  // part of volume v of it, whose sum is at most min(v L, S - (V - v) m): v* = (S - V m)/(L - m)
+  // of it at L, the rest at m.
+  struct RimVoxel {
+    double volume, weighted, largest, smallest, top;
+  };
+  thread_local std::vector<RimVoxel> rim;
+  rim.clear();
+  for (int n = 0; n < 27; ++n) {
+    const int nb = centre_block.neighbours[n];
+    if (nb < 0) continue;
+    const Reach& reach = reach_[voxel][n];
+    const std::size_t base = std::size_t(nb) * kBlockVoxels;
+    for (std::uint64_t bits = reach.inside & occupied_[nb]; bits != 0; bits &= bits - 1) {
+      const int l = std::countr_zero(bits);
+      inside_weighted += sums.weighted[base + l];
+      inside_volume += sums.volume[base + l];
+    }
+    for (std::uint64_t bits = reach.rim & occupied_[nb]; bits != 0; bits &= bits - 1) {
+      const std::size_t l = base + std::countr_zero(bits);
+      const double V = sums.volume[l], S = sums.weighted[l], L = sums.largest[l], m = sums.smallest[l];
+      const double top = L > m ? std::clamp((S - V * m) / (L - m), 0.0, V) : V;
+      rim.push_back({V, S, L, m, top});
+    }
+  }
+  // Dinkelbach: with λ the ratio so far, each rim voxel takes the part that gains most against λ
+  // (none above L, its top part between m and L, all of it below m); λ rises to the maximum ratio.
+  double ratio = -std::numeric_limits<double>::infinity();
+  for (std::size_t iteration = 0; iteration <= 2 * rim.size() + 1; ++iteration) {
+    double weighted = inside_weighted, volume = inside_volume;
+    for (const RimVoxel& r : rim)
+      if (r.smallest >= ratio) weighted += r.weighted, volume += r.volume;
+      else if (r.largest > ratio) weighted += r.top * r.largest, volume += r.top;
+    if (volume <= 0.0) return 0.0;  // average() of a ball without points
+    const double next = weighted / volume;
+    if (!(next > ratio)) break;
+    ratio = next;
+  }
+  return ratio;
 }
 
 LocatedValue BallAverager::average_around(const Point3& x, std::span<const double> field) const {
@@ -275,6 +324,14 @@ LocatedValue BallAverager::maximum(std::span<const double> field) const {
       std::size_t block_slot = kNone;
       for (int l = 0; l < kBlockVoxels; ++l) {
         if (!(block.centres_in_tissue & (std::uint64_t{1} << l))) continue;
+        // A centre whose bound is below the best average found cannot beat it, nor tie it: the
+        // margin covers the bound's and the average's different rounding.
+        double known_best;
+#pragma omp atomic read
+        known_best = best;
+        known_best = std::max(known_best, block_best);
+        const double bound = average_bound(sums, candidates[c].block, l);
+        if (bound + kBoundMargin * (std::abs(bound) + std::abs(known_best)) < known_best) continue;
         const double value = average(sums, candidates[c].block, l);
         if (better(value, c * kBlockVoxels + l, block_best, block_slot)) {
           block_best = value;
