@@ -70,6 +70,9 @@ void SinglePrecisionFactor::analyse(const cholmod_factor& symbolic, const cholmo
   plan_subtrees(omp_get_max_threads());
   const std::size_t threads = thread_ranges_.size();
   gathered_.assign(threads, std::vector<float>(symbolic.maxesize));
+  workspaces_.clear();
+  for (std::size_t t = 0; t < threads; ++t)
+    workspaces_.push_back({std::vector<int>(n_), std::vector<float>(max_update_), {}});
   above_.assign(threads > 1 ? threads : 0, std::vector<float>(n_, 0.0f));
   above_row_.assign(n_, 0);
   if (threads > 1)
@@ -416,7 +419,7 @@ bool SinglePrecisionFactor::factor_values() {
   const int threads = static_cast<int>(thread_ranges_.size());
   const BlasThreads one_each(1);
   std::vector<std::vector<int>> heads(threads, std::vector<int>(supernodes_, -1));
-  std::vector<Workspace> work(threads, Workspace{std::vector<int>(n_), std::vector<float>(max_update_), {}});
+  std::vector<Workspace>& work = workspaces_;
   bool ok = true;
   if (threads > 1) {
     // Thread t takes the subtrees planned for threads t, t + team, ...: OpenMP may give fewer

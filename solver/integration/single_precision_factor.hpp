@@ -152,6 +152,9 @@ class SinglePrecisionFactor {
   std::vector<char> above_row_;  // per column: it belongs to a top supernode (and there are subtrees)
   std::vector<float> work_;
   std::vector<std::vector<float>> gathered_, above_;  // per thread
+  // Per thread, kept from one factorisation to the next: the update matrices alone are up to
+  // CHOLMOD's largest update (maxcsize) each, whose fresh pages the kernel would zero every time.
+  std::vector<Workspace> workspaces_;
   long failed_column_ = -1;
 };
 
