@@ -162,10 +162,10 @@ Report build_report(std::vector<LevelRun> levels, const Settings& settings) {
       if (decider) break;
     }
     if (!decider) continue;
-    LimitVerdict limit{name, decider->limit, decider->metric, *decider->verdict, json()};
+    LimitVerdict limit{name, decider->limit, decider->metric, *decider->verdict, json::object()};
     // Its history.csv columns, from the finest level that names them.
     const json::json_pointer at(fmt::format("/safety/{}/history_columns", name));
-    for (auto run = runs.rbegin(); run != runs.rend() && limit.history_columns.is_null(); ++run)
+    for (auto run = runs.rbegin(); run != runs.rend() && limit.history_columns.empty(); ++run)
       if (run->status == "completed" && run->summary.contains(at) && run->summary.at(at).is_object())
         limit.history_columns = run->summary.at(at);
     report.limits.push_back(std::move(limit));
@@ -266,8 +266,7 @@ json report_json(const Report& report) {
     verdicts[limit.limit_name] = {{"verdict", to_string(limit.verdict)},
                                   {"metric", limit.metric},
                                   {"limit", limit.limit},
-                                  {"history_columns", limit.history_columns.is_null() ? json::object()
-                                                                                       : limit.history_columns}};
+                                  {"history_columns", limit.history_columns}};
   out["verdicts"] = verdicts;
   out["warnings"] = report.warnings;
   if (report.levels.size() >= 4)

@@ -56,7 +56,8 @@ struct LimitVerdict {
   double limit = 0;
   std::string metric;  // the row that decided
   Verdict verdict = Verdict::undecided;
-  nlohmann::json history_columns;  // safety.<limit>.history_columns: its history.csv columns by role
+  // safety.<limit>.history_columns: its history.csv columns by role ({} when no level names them)
+  nlohmann::json history_columns = nlohmann::json::object();
 };
 
 struct Report {

@@ -419,7 +419,6 @@ bool SinglePrecisionFactor::factor_values() {
   const int threads = static_cast<int>(thread_ranges_.size());
   const BlasThreads one_each(1);
   std::vector<std::vector<int>> heads(threads, std::vector<int>(supernodes_, -1));
-  std::vector<Workspace>& work = workspaces_;
   bool ok = true;
   if (threads > 1) {
     // Thread t takes the subtrees planned for threads t, t + team, ...: OpenMP may give fewer
@@ -427,7 +426,7 @@ bool SinglePrecisionFactor::factor_values() {
 #pragma omp parallel num_threads(threads) reduction(&& : ok)
     for (int planned = omp_get_thread_num(); planned < threads; planned += omp_get_num_threads())
       for (const auto& [first, last] : thread_ranges_[planned])
-        if (ok) ok = factor_range(first, last, heads[planned], work[planned]);
+        if (ok) ok = factor_range(first, last, heads[planned], workspaces_[planned]);
   }
   if (!ok) return false;
   // The lists of each thread joined into the first's.
@@ -440,7 +439,7 @@ bool SinglePrecisionFactor::factor_values() {
       next_in_list_[last] = head[j];
       head[j] = heads[t][j];
     }
-  return factor_top(head, work);
+  return factor_top(head, workspaces_);
 }
 
 }  // namespace needlefem
