@@ -394,8 +394,7 @@ class RunPass {
     Vec atol = nullptr;
     petsc_check(VecDuplicate(integrator.state(), &atol), "VecDuplicate");
     const IntegrationSpec& integration = specs_.integration;
-    system.absolute_tolerances(atol, integration.absolute_tolerance, integration.viscous_stress_absolute_tolerance_pa,
-                               integration.pressure_absolute_tolerance_pa);
+    system.absolute_tolerances(atol, integration.absolute_tolerance, integration.pressure_absolute_tolerance_pa);
     integrator.set_absolute_tolerances(atol);
     VecDestroy(&atol);
     if (times_.size() < 2) return;

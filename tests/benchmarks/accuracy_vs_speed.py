@@ -67,7 +67,6 @@ SMOOTH = ("log_strain", "von_mises", "axial_force")   # error_max; the strain ra
 
 def tolerances(rtol):
     return {"integration.relative_tolerance": rtol, "integration.absolute_tolerance": float(f"{rtol * 1e-4:g}"),
-            "integration.viscous_stress_absolute_tolerance_pa": float(f"{rtol * 1e3:g}"),
             "integration.pressure_absolute_tolerance_pa": float(f"{rtol * 1e3:g}")}
 
 

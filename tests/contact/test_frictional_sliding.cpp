@@ -150,7 +150,7 @@ struct DraggedSlab {
     // The element pressures' tolerance: what the displacements' makes of K θ over the slab.
     Vec atol = nullptr;
     VecDuplicate(integrator->state(), &atol);
-    system.absolute_tolerances(atol, options.absolute_tolerance, 0.0,
+    system.absolute_tolerances(atol, options.absolute_tolerance,
                                kBulkModulus * options.absolute_tolerance / kHeight);
     integrator->set_absolute_tolerances(atol);
     VecDestroy(&atol);

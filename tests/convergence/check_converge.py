@@ -139,14 +139,28 @@ with open(args.out / "converge.csv") as f:
 check(rows4 and list(rows4[0].keys()) == expected[:6] + ["f_level3"] + expected[6:] + [
     "coarser_band_low", "coarser_band_high", "finest_in_coarser_band"], f"4-level columns {list(rows4[0].keys())}")
 # Each row says whether level 3's value lies in the band of levels 0-2 (the block's values differ
-# between levels in the sixth digit, and its narrowest bands do not always hold them).
-inside = [float(r["coarser_band_low"]) <= float(r["f_level3"]) <= float(r["coarser_band_high"]) for r in rows4]
-check(rows4 and [r["finest_in_coarser_band"] for r in rows4] == ["yes" if i else "no" for i in inside],
+# between levels in the sixth digit, and its narrowest bands do not always hold them). Where the
+# value is within the table's nine printed digits of an edge of the band (the imposed strain
+# rate is 0.2 1/s to the ninth digit on every level, its band no wider), the table cannot decide
+# and the row may say either.
+def printed_close(a, b):
+    return abs(a - b) <= 1e-8 * max(abs(a), abs(b), 1e-30)
+
+
+def agrees(r):
+    low, value, high = (float(r[k]) for k in ("coarser_band_low", "f_level3", "coarser_band_high"))
+    if printed_close(value, low) or printed_close(value, high):
+        return r["finest_in_coarser_band"] in ("yes", "no")
+    return r["finest_in_coarser_band"] == ("yes" if low <= value <= high else "no")
+
+
+check(rows4 and all(agrees(r) for r in rows4),
       "finest_in_coarser_band says whether f_level3 lies in [coarser_band_low, coarser_band_high]")
-line = f"converge: the bands of levels 0-2 hold level 3's value for {sum(inside)} of {len(rows4)} metrics"
+held = sum(r["finest_in_coarser_band"] == "yes" for r in rows4)
+line = f"converge: the bands of levels 0-2 hold level 3's value for {held} of {len(rows4)} metrics"
 check(any(l.startswith(line) for l in four.stdout.splitlines()), f"stdout says so: {line!r}")
 report4 = json.loads((args.out / "converge.json").read_text())
-check(report4["coarser_bands"] == {"checked": len(rows4), "held": sum(inside)}, f"converge.json: {report4.get('coarser_bands')}")
+check(report4["coarser_bands"] == {"checked": len(rows4), "held": held}, f"converge.json: {report4.get('coarser_bands')}")
 strain4 = {r["metric"]: r for r in rows4}.get("max.log_strain")
 check(strain4 is not None and abs(float(strain4["f_level3"]) - math.log(1.2)) < 1e-3, "max.log_strain at level 3 is ln 1.2")
 

@@ -48,7 +48,7 @@ std::vector<double> random_values(std::size_t count, double amplitude, unsigned 
 
 // ||K - K_fd||_F / ||K||_F with central differences of the residual.
 double tangent_error(const TetElementKernel& kernel, const ElementGeometry& geometry, std::vector<double> u,
-                     const double* viscous) {
+                     const ViscousStep* viscous) {
   const ElementResult at = kernel.evaluate(geometry, u.data(), viscous, true);
   EXPECT_FALSE(at.inverted);
   const int dofs = 3 * geometry.nodes;
@@ -86,10 +86,13 @@ TEST(TetElement, TangentMatchesFiniteDifferencesElasticAndViscous) {
     const ElementGeometry geometry = element_geometry(variant.nodes, x.data());
     const TetElementKernel kernel(tissue_material(1e5, true), variant.formulation);
     const auto u = random_values(3 * variant.nodes, 0.08 * kSize, 7);
-    const auto q = random_values(geometry.points * kernel.prony_terms() * kVoigt, 150.0, 11);
+    // A step of 0.2 s (elastic fraction 0.87) from histories of Q_i and S⁰ up to 150 Pa.
+    const auto history = random_values(geometry.points * material::prony_history_size(kernel.prony().size()), 150.0, 11);
+    const material::PronyStep step = material::prony_step(kernel.prony(), 0.2);
+    const ViscousStep viscous_step{&step, history.data()};
     const double elastic = tangent_error(kernel, geometry, u, nullptr);
-    const double viscous = tangent_error(kernel, geometry, u, q.data());
-    std::printf("%-24s tangent rel. error: Q = 0 %.2e, Q != 0 %.2e\n", variant.name, elastic, viscous);
+    const double viscous = tangent_error(kernel, geometry, u, &viscous_step);
+    std::printf("%-24s tangent rel. error: elastic %.2e, viscous step %.2e\n", variant.name, elastic, viscous);
     EXPECT_LT(elastic, 1e-6) << variant.name;
     EXPECT_LT(viscous, 1e-6) << variant.name;
   }
@@ -193,92 +196,6 @@ TEST(TetElement, GreenStrainProductsWithoutBMatchTheOperator) {
     }
     for (int c = 0; c < 30; ++c) EXPECT_NEAR(work[c], expected_work[c], 1e-12 * std::abs(expected_work[c])) << c;
   }
-}
-
-// The single-precision condensation element against the double-precision products, point by
-// point: D⁰ (symmetric, stored as its upper triangle) B_q u in each lane, and Σ_q w_q B_qᵀ s_q
-// with a different stress at each point, to single precision but not to double.
-TEST(TetElement, CondensationElementMatchesTheDoubleProductsToSinglePrecision) {
-  const auto x = element_coordinates(10);
-  const ElementGeometry geometry = element_geometry(10, x.data());
-  const auto material = tissue_material(1e6, true);
-  const auto displacement = random_values(30, 0.05 * kSize, 21), u = random_values(30, 1e-4, 22);
-  const auto stresses = random_values(kVoigt * kMaxElementPoints, 500.0, 23);
-  const ElementResult result =
-      TetElementKernel(material, Formulation::mean_dilatation).evaluate(geometry, displacement.data(), nullptr, true);
-  ASSERT_EQ(geometry.points, kMaxElementPoints);
-  CondensationElement condensed;
-  std::array<PointLanes, kVoigt> s{};
-  std::vector<double> expected_work(30, 0.0);
-  for (int q = 0; q < geometry.points; ++q) {
-    const PointResult& point = result.points[q];
-    for (int m = 0; m < kVoigt; ++m)
-      for (int n = 0; n < kVoigt; ++n)
-        EXPECT_NEAR(point.elastic_tangent[m * kVoigt + n], point.elastic_tangent[n * kVoigt + m],
-                    1e-10 * std::abs(point.elastic_tangent[0]));
-    condensed.set_point(q, point, geometry.gradient_at(q), 10, geometry.weight[q]);
-    std::array<double, kVoigt> point_stress{};
-    for (int m = 0; m < kVoigt; ++m) {
-      point_stress[m] = static_cast<float>(stresses[q * kVoigt + m]);  // the lanes hold floats
-      s[m][q] = static_cast<float>(point_stress[m]);
-    }
-    add_green_strain_transpose(point.deformation_gradient, geometry.gradient_at(q), 10, point_stress, geometry.weight[q],
-                               expected_work.data());
-  }
-  const auto tangent_stress = condensed.tangent_stress(u.data(), 10);
-  double largest_error = 0.0;
-  for (int q = 0; q < geometry.points; ++q) {
-    const PointResult& point = result.points[q];
-    const auto strain = green_strain_variation(point.deformation_gradient, geometry.gradient_at(q), 10, u.data());
-    double scale = 0.0, error = 0.0;
-    for (int m = 0; m < kVoigt; ++m) {
-      double expected = 0.0;
-      for (int n = 0; n < kVoigt; ++n) expected += point.elastic_tangent[m * kVoigt + n] * strain[n];
-      scale = std::max(scale, std::abs(expected));
-      error = std::max(error, std::abs(tangent_stress[m][q] - expected));
-    }
-    largest_error = std::max(largest_error, error / scale);
-  }
-  std::vector<double> work(30, 0.0);
-  condensed.add_stress_transpose(s, 10, work.data());
-  double work_scale = 0.0, work_error = 0.0;
-  for (int c = 0; c < 30; ++c) {
-    work_scale = std::max(work_scale, std::abs(expected_work[c]));
-    work_error = std::max(work_error, std::abs(work[c] - expected_work[c]));
-  }
-  std::printf("condensation element: D0 B u relative error %.2e, sum of w B^T s %.2e\n", largest_error,
-              work_error / work_scale);
-  EXPECT_LT(largest_error, 1e-6);
-  EXPECT_GT(largest_error, 1e-12);  // it really is single precision
-  EXPECT_LT(work_error / work_scale, 1e-6);
-  EXPECT_GT(work_error / work_scale, 1e-12);
-}
-
-// A one-point TET4 uses lane 0; the zero lanes of the others add nothing.
-TEST(TetElement, CondensationElementOfATet4UsesOneLane) {
-  const auto x = element_coordinates(4);
-  const ElementGeometry geometry = element_geometry(4, x.data());
-  const auto material = tissue_material(1e6, true);
-  const auto displacement = random_values(12, 0.05 * kSize, 31), u = random_values(12, 1e-4, 32);
-  const ElementResult result =
-      TetElementKernel(material, Formulation::displacement).evaluate(geometry, displacement.data(), nullptr, true);
-  ASSERT_EQ(geometry.points, 1);
-  CondensationElement condensed;
-  condensed.set_point(0, result.points[0], geometry.gradient_at(0), 4, geometry.weight[0]);
-  std::array<PointLanes, kVoigt> s{};
-  std::array<double, kVoigt> point_stress{};
-  for (int m = 0; m < kVoigt; ++m) {
-    point_stress[m] = 100.0 * (m + 1);
-    for (int lane = 0; lane < kMaxElementPoints; ++lane) s[m][lane] = static_cast<float>(point_stress[m]);  // all lanes
-  }
-  std::vector<double> work(12, 0.0), expected(12, 0.0);
-  condensed.add_stress_transpose(s, 4, work.data());
-  add_green_strain_transpose(result.points[0].deformation_gradient, geometry.gradient_at(0), 4, point_stress,
-                             geometry.weight[0], expected.data());
-  for (int c = 0; c < 12; ++c) EXPECT_NEAR(work[c], expected[c], 1e-6 * std::abs(expected[c]) + 1e-12) << c;
-  const auto stress = condensed.tangent_stress(u.data(), 4);
-  for (int m = 0; m < kVoigt; ++m)
-    for (int lane = 1; lane < kMaxElementPoints; ++lane) EXPECT_EQ(stress[m][lane], 0.0f);
 }
 
 }  // namespace

@@ -20,13 +20,12 @@ IntegrationSpec spec_of(const std::string& toml, const std::vector<std::string>&
 TEST(IntegrationOptionsFromSpec, DefaultsAreIdaDefaultsAndSparseCholesky) {
   const IntegrationSpec spec = spec_of("");
   const IdaOptions ida = ida_options_from_spec(spec);
-  EXPECT_DOUBLE_EQ(ida.relative_tolerance, 1e-4);
-  EXPECT_DOUBLE_EQ(ida.absolute_tolerance, 1e-8);
+  EXPECT_DOUBLE_EQ(ida.relative_tolerance, 3e-4);
+  EXPECT_DOUBLE_EQ(ida.absolute_tolerance, 3e-8);
   EXPECT_EQ(ida.max_order, 5);
   EXPECT_EQ(ida.max_newton_iterations, 20);  // not IDA's 4: contact kinks need more (schema.cpp)
   EXPECT_FALSE(ida.fixed_step.has_value());
-  EXPECT_DOUBLE_EQ(spec.viscous_stress_absolute_tolerance_pa, 0.1);
-  EXPECT_DOUBLE_EQ(spec.pressure_absolute_tolerance_pa, 0.1);
+  EXPECT_DOUBLE_EQ(spec.pressure_absolute_tolerance_pa, 0.3);
   const NewtonMatrixOptions newton = newton_matrix_options_from_spec(spec);
   EXPECT_EQ(newton.method, LinearSolver::cholesky);
   EXPECT_EQ(newton.prefix, "nf_");

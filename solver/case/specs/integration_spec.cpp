@@ -25,7 +25,6 @@ IntegrationSpec parse_integration_spec(const Case& c) {
   const IntegrationSpec spec{
       .relative_tolerance = c.real("integration.relative_tolerance"),
       .absolute_tolerance = c.real("integration.absolute_tolerance"),
-      .viscous_stress_absolute_tolerance_pa = c.real("integration.viscous_stress_absolute_tolerance_pa"),
       .pressure_absolute_tolerance_pa = c.real("integration.pressure_absolute_tolerance_pa"),
       .max_order = c.integer("integration.max_order"),
       .initial_step_s = c.real("integration.initial_step_s"),

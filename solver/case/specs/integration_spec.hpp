@@ -21,7 +21,6 @@ enum class KrylovPreconditioner { exact, symmetric };
 struct IntegrationSpec {
   double relative_tolerance;
   double absolute_tolerance;  // of the displacements, m
-  double viscous_stress_absolute_tolerance_pa;
   double pressure_absolute_tolerance_pa;
   long max_order;
   double initial_step_s;  // 0: IDA chooses

@@ -191,60 +191,6 @@ void green_strain_operator(const std::array<double, 9>& F, const double* gradien
   }
 }
 
-void CondensationElement::set_point(int p, const PointResult& point, const double* point_gradient, int nodes,
-                                    double point_weight) {
-  weight[p] = static_cast<float>(point_weight);
-  for (int k = 0; k < 9; ++k) deformation_gradient[k][p] = static_cast<float>(point.deformation_gradient[k]);
-  for (int m = 0, k = 0; m < kVoigt; ++m)
-    for (int n = m; n < kVoigt; ++n) elastic_tangent[k++][p] = static_cast<float>(point.elastic_tangent[m * kVoigt + n]);
-  for (int k = 0; k < 3 * nodes; ++k) gradient[k][p] = static_cast<float>(point_gradient[k]);
-}
-
-// add_green_strain_transpose, lane by lane: out_a += Σ_q w_q F_q S_q G_qa.
-void CondensationElement::add_stress_transpose(const std::array<PointLanes, kVoigt>& s, int nodes,
-                                               double* out) const {
-  const PointLanes S[9] = {s[0], s[5], s[4], s[5], s[1], s[3], s[4], s[3], s[2]};
-  const auto& F = deformation_gradient;
-  PointLanes FS[9];
-  for (int i = 0; i < 3; ++i)
-    for (int J = 0; J < 3; ++J)
-      FS[3 * i + J] = weight * (F[3 * i] * S[J] + F[3 * i + 1] * S[3 + J] + F[3 * i + 2] * S[6 + J]);
-  for (int a = 0; a < nodes; ++a) {
-    const PointLanes* G = gradient.data() + 3 * a;
-    for (int i = 0; i < 3; ++i) {
-      const PointLanes sum = FS[3 * i] * G[0] + FS[3 * i + 1] * G[1] + FS[3 * i + 2] * G[2];
-      out[3 * a + i] += static_cast<double>(sum[0]) + sum[1] + sum[2] + sum[3];
-    }
-  }
-}
-
-// green_strain_variation, lane by lane, then D⁰ times the strain.
-std::array<PointLanes, kVoigt> CondensationElement::tangent_stress(const double* u, int nodes) const {
-  PointLanes H[9] = {};
-  for (int a = 0; a < nodes; ++a) {
-    const PointLanes* G = gradient.data() + 3 * a;
-    for (int i = 0; i < 3; ++i) {
-      const float value = static_cast<float>(u[3 * a + i]);
-      const PointLanes u_ai = {value, value, value, value};
-      for (int J = 0; J < 3; ++J) H[3 * i + J] += u_ai * G[J];
-    }
-  }
-  const auto& F = deformation_gradient;
-  PointLanes A[9];  // Fᵀ H
-  for (int I = 0; I < 3; ++I)
-    for (int J = 0; J < 3; ++J) A[3 * I + J] = F[I] * H[J] + F[3 + I] * H[3 + J] + F[6 + I] * H[6 + J];
-  const PointLanes strain[kVoigt] = {A[0], A[4], A[8], A[5] + A[7], A[2] + A[6], A[1] + A[3]};
-  std::array<PointLanes, kVoigt> stress{};
-  for (int m = 0, k = 0; m < kVoigt; ++m) {
-    stress[m] += elastic_tangent[k++] * strain[m];
-    for (int n = m + 1; n < kVoigt; ++n, ++k) {
-      stress[m] += elastic_tangent[k] * strain[n];
-      stress[n] += elastic_tangent[k] * strain[m];
-    }
-  }
-  return stress;
-}
-
 TetElementKernel::TetElementKernel(const material::Material& material, Formulation formulation)
     : material_(material), formulation_(formulation) {
   if (formulation == Formulation::mean_dilatation && !material.incompressible())
@@ -253,25 +199,25 @@ TetElementKernel::TetElementKernel(const material::Material& material, Formulati
 }
 
 ElementResult TetElementKernel::evaluate(const ElementGeometry& geometry, const double* displacement,
-                                         const double* viscous, bool with_tangent, double material_tangent_scale,
-                                         const double* given_pressure, double* viscous_rate) const {
+                                         const ViscousStep* viscous, bool with_tangent,
+                                         const double* given_pressure) const {
   if (3 * geometry.nodes > kMaxElementDofs || geometry.points > kMaxElementPoints)
     throw std::invalid_argument("element evaluation: more nodes or quadrature points than a TET10's");
   return std::visit(
       [&](const auto& law) {
-        return evaluate_law(law, geometry, displacement, viscous, with_tangent, material_tangent_scale,
-                            given_pressure, viscous_rate);
+        return evaluate_law(law, geometry, displacement, viscous, with_tangent, given_pressure);
       },
       material_.law());
 }
 
 template <class Law>
 ElementResult TetElementKernel::evaluate_law(const Law& law, const ElementGeometry& geometry,
-                                             const double* displacement, const double* viscous, bool with_tangent,
-                                             double material_tangent_scale, const double* given_pressure,
-                                             double* viscous_rate) const {
+                                             const double* displacement, const ViscousStep* viscous,
+                                             bool with_tangent, const double* given_pressure) const {
   const int n = geometry.nodes, dofs = 3 * n;
-  const std::size_t values_per_point = law.prony().size() * kVoigt;
+  const bool viscoelastic = viscous && !law.prony().empty();
+  const std::size_t values_per_point = material::prony_history_size(law.prony().size());
+  const double material_tangent_scale = viscoelastic ? viscous->step->elastic_fraction : 1.0;
   ElementResult result;
   double current_volume = 0.0;
   if (!deformation_gradients(geometry, displacement, result, current_volume)) return result;
@@ -290,11 +236,12 @@ ElementResult TetElementKernel::evaluate_law(const Law& law, const ElementGeomet
     const double* G = geometry.gradient_at(q);
     PointResult& point = result.points[q];
     const Mat3d F = to_mat3(point.deformation_gradient);
-    const std::size_t offset = q * values_per_point;
+    material::ViscousStress viscous_stress;
+    if (viscoelastic) viscous_stress = material::viscous_stress(*viscous->step, viscous->history + q * values_per_point);
     const material::PointResponse response =
-        law.respond(F, viscous ? viscous + offset : nullptr, with_tangent ? &point.elastic_tangent : nullptr,
-                    viscous_rate ? viscous_rate + offset : nullptr);
+        law.respond(F, viscoelastic ? &viscous_stress : nullptr, with_tangent ? &point.elastic_tangent : nullptr);
     point.stress = to_voigt(response.stress);
+    point.elastic_stress = to_voigt(response.elastic_stress);
     result.energy += w * response.energy;
     add_green_strain_transpose(point.deformation_gradient, G, n, point.stress, w, r);
     if (with_tangent) {

@@ -8,7 +8,9 @@
 //                F_i1 G_a2 + F_i2 G_a1].
 //
 // Stress (physics/material/polynomial.hpp, viscoelastic.hpp; Holzapfel 2000 §6.4, §6.10):
-//   S = S⁰_iso(C) - Σ_i Q_i + S_vol,   the Q_i (Prony internal variables) are element inputs.
+//   S = S⁰_iso(C) - Σ_i Q_i + S_vol,   the Q_i (Prony internal variables) at the end of a step
+//   from the points' histories, which are element inputs (ViscousStep, below):
+//   S_iso = a S⁰_iso(C) - H,   a = PronyStep::elastic_fraction, H from the history.
 //
 // DISPLACEMENT formulation (TET4/TET10, locks as K/mu grows):
 //   Π_e = ∫ W_iso(C) dV + ∫ U(J) dV,  U = K/2 (J - 1)².
@@ -27,22 +29,19 @@
 //   tangent's p ∂²v_e/∂u² term then use the given p, and ElementResult reports U'(θ), ∂v_e/∂u
 //   and U''(θ)/V_e for that equation.
 //
-// Residual (r_a = ∂Π_e/∂u_a for the elastic part; the Q_i enter through S):
+// Residual (r_a = ∂Π_e/∂u_a for the elastic part; the history enters through S):
 //   r = Σ_q w_q B_qᵀ S_iso,v(q) + volumetric part,
 //   volumetric part  displacement: Σ_q w_q U'(J_q) ∂J_q/∂u,   mixed: U'(θ) ∂v_e/∂u,
 //   with ∂J/∂u_ai = J n_ai, n_ai = G_aJ F⁻¹_Ji (= ∂N_a/∂x_i), v_e = Σ_q w_q J_q.
-// Tangent (consistent, at fixed Q):
-//   K = Σ_q w_q [ s B_qᵀ D⁰ B_q + δ_ik G_a·S_iso G_b ] + volumetric part,
-//   D⁰ = ∂S⁰_iso/∂E (6 x 6, exact via dual numbers), s = `material_tangent_scale` (1 for ∂r/∂u;
-//   1 - Σ_i g_i/(1 + c_j τ_i) after the Prony internal variables have been condensed out of an
-//   IDA Newton matrix, material::condensed_fraction and mechanics/mechanics_system.hpp),
+// Tangent (consistent with the step's recursion):
+//   K = Σ_q w_q [ a B_qᵀ D⁰ B_q + δ_ik G_a·S_iso G_b ] + volumetric part,
+//   D⁰ = ∂S⁰_iso/∂E (6 x 6, exact via dual numbers), a = 1 without a ViscousStep,
 //   ∂²J/∂u_ai∂u_bk = J (n_ai n_bk - n_ak n_bi),
 //   displacement: Σ_q w_q [U''(J) J² n n + U'(J) J (n_ai n_bk - n_ak n_bi)],
 //   mixed: U'(θ) ∂²v_e/∂u² + U''(θ)/V_e (∂v_e/∂u)(∂v_e/∂u)ᵀ.
 //
 // The kernel asks the law for nothing but its pointwise response (physics/material/
-// point_response.hpp): S, D⁰, W_iso, U(J) with its slopes and, for IDA's viscous rows, the
-// Prony rates dQ_i/dt. Laws without the isochoric/volumetric split (co-rotational linear) give
+// point_response.hpp): S, S⁰_iso, D⁰, W_iso, U(J) with its slopes. Laws without the isochoric/volumetric split (co-rotational linear) give
 // all of S and ∂S/∂E there and use the displacement formulation only; they carry no internal
 // variables. The kernel is instantiated per law (std::visit once per element, not per point).
 //
@@ -84,11 +83,12 @@ ElementGeometry element_geometry(int nodes_per_tet, const double* coordinates);
 // (nodes x 3): F from the identity and the displacements, Ḟ from zero and the velocities.
 void add_field_gradient(const ElementGeometry& geometry, int q, const double* values, material::Mat3d& sum);
 
-// What an evaluation reports at each quadrature point, for output fields and the condensation
-// of the viscous internal variables.
+// What an evaluation reports at each quadrature point, for output fields and the points'
+// viscous histories.
 struct PointResult {
   std::array<double, 9> deformation_gradient{};           // F, row-major
-  material::Voigt stress{};                               // S carried by B_q (S_iso - Σ Q_i or all of S)
+  material::Voigt stress{};                               // S carried by B_q (S_iso or all of S)
+  material::Voigt elastic_stress{};                       // S⁰_iso (split laws), to advance a history
   material::VoigtTangent elastic_tangent{};               // D⁰ = ∂S⁰_iso,v/∂E_v (with tangent)
   double pressure = 0.0;                                  // split laws: U'(J) at the point
 };
@@ -112,6 +112,13 @@ struct ElementResult {
   double pressure_stiffness = 0.0;
 };
 
+// A Prony step for one element: the step's coefficients (material::prony_step) and the points'
+// histories at its start, points x material::prony_history_size values.
+struct ViscousStep {
+  const material::PronyStep* step = nullptr;
+  const double* history = nullptr;
+};
+
 class TetElementKernel {
  public:
   // Throws std::invalid_argument for the mean-dilatation form with a law that has no
@@ -119,22 +126,19 @@ class TetElementKernel {
   TetElementKernel(const material::Material& material, Formulation formulation);
 
   Formulation formulation() const { return formulation_; }
-  // Prony terms of the material (0 for elastic laws); internal variables per point = 6 x this.
+  // Prony terms of the material (0 for elastic laws).
   int prony_terms() const { return static_cast<int>(material_.prony().size()); }
   const std::vector<material::PronyTerm>& prony() const { return material_.prony(); }
 
-  // displacement: 3n values; viscous: points x terms x 6 Voigt Q values, or nullptr for Q = 0;
-  // given_pressure: the mixed element's p, or nullptr for p = U'(θ); viscous_rate: where to
-  // write dQ_i/dt (laid out like `viscous`), or nullptr.
-  ElementResult evaluate(const ElementGeometry& geometry, const double* displacement, const double* viscous,
-                         bool with_tangent, double material_tangent_scale = 1.0,
-                         const double* given_pressure = nullptr, double* viscous_rate = nullptr) const;
+  // displacement: 3n values; viscous: the step the stress is taken at the end of, or nullptr for
+  // the elastic response (Q = 0); given_pressure: the mixed element's p, or nullptr for p = U'(θ).
+  ElementResult evaluate(const ElementGeometry& geometry, const double* displacement, const ViscousStep* viscous,
+                         bool with_tangent, const double* given_pressure = nullptr) const;
 
  private:
   template <class Law>
   ElementResult evaluate_law(const Law& law, const ElementGeometry& geometry, const double* displacement,
-                             const double* viscous, bool with_tangent, double material_tangent_scale,
-                             const double* given_pressure, double* viscous_rate) const;
+                             const ViscousStep* viscous, bool with_tangent, const double* given_pressure) const;
 
   material::Material material_;
   Formulation formulation_;
@@ -144,7 +148,7 @@ class TetElementKernel {
 void green_strain_operator(const std::array<double, 9>& F, const double* gradient, int nodes, double* B);
 // The two products with B_q that residuals and condensation need, without forming B_q (the
 // hot loops of a Newton-Krylov solve call them for every point of every element); F and the
-// gradients in double, sums in double (CondensationElement has its own, for four points at once):
+// gradients in double, sums in double:
 //   out += w B_qᵀ s,  i.e. out_a += w F S G_a  (S the symmetric tensor of the Voigt stress s);
 template <class Real>
 void add_green_strain_transpose(const std::array<Real, 9>& F, const Real* gradient, int nodes,
@@ -175,30 +179,5 @@ std::array<double, kVoigt> green_strain_variation(const std::array<Real, 9>& F, 
     for (int J = 0; J < 3; ++J) A[3 * I + J] = F[I] * H[J] + F[3 + I] * H[3 + J] + F[6 + I] * H[6 + J];
   return {A[0], A[4], A[8], A[5] + A[7], A[2] + A[6], A[1] + A[3]};
 }
-
-// Four single-precision lanes, one per quadrature point of a TET10 (GCC's vector extension:
-// one SSE instruction on x86-64, NEON on ARM, for an operation over the element's points).
-using PointLanes = float __attribute__((vector_size(4 * sizeof(float))));
-static_assert(kMaxElementPoints == 4, "CondensationElement holds a lane per point");
-
-// What the viscous condensation of a Newton solve needs of one element, in single precision,
-// its points side by side (unused lanes of a one-point TET4 stay zero, weight included): the
-// condensation is part of the preconditioner of IDA's GMRES (or of modified Newton's inexact
-// iteration), where single precision is enough, and it runs for every element at every GMRES
-// iteration, so point-by-point scalar code would be a visible share of a run (docs/speed.md,
-// "Measurements formerly in code comments"). D⁰ is stored as its upper triangle: it is symmetric (the second derivative of W_iso in E).
-struct CondensationElement {
-  std::array<PointLanes, 9> deformation_gradient{};
-  std::array<PointLanes, kVoigt*(kVoigt + 1) / 2> elastic_tangent{};  // D⁰ by rows, upper triangle
-  std::array<PointLanes, kMaxElementDofs> gradient{};                 // G_a, a = 1..n
-  PointLanes weight{};                                                // w_q
-
-  // Point p's lane from its evaluation, gradients (3n) and weight.
-  void set_point(int p, const PointResult& point, const double* gradient, int nodes, double weight);
-  // Σ_q w_q B_qᵀ s_q added to out (3n); s holds each point's Voigt stress in its lane.
-  void add_stress_transpose(const std::array<PointLanes, kVoigt>& s, int nodes, double* out) const;
-  // D⁰ B_q u at every point q, in its lane.
-  std::array<PointLanes, kVoigt> tangent_stress(const double* u, int nodes) const;
-};
 
 }  // namespace needlefem::elements

@@ -72,10 +72,11 @@ bool TissueFieldEvaluator::evaluate_element(std::size_t k, const double* state, 
   std::array<double, elements::kMaxElementDofs> u_e, v_e;
   system_.gather(k, state, u_e.data());
   system_.gather(k, rate, v_e.data());
-  const double* viscous = system_.kernel().prony_terms() ? state + system_.viscous_offset(k) : nullptr;
+  // The fields are those of an accepted state, whose viscous stresses the system keeps.
+  elements::ViscousStep view;
   const auto& geometry = system_.geometry(k);
-  const elements::ElementResult result =
-      system_.kernel().evaluate(geometry, u_e.data(), viscous, false, 1.0, system_.element_pressure(state, k));
+  const elements::ElementResult result = system_.kernel().evaluate(
+      geometry, u_e.data(), system_.accepted_viscous_state(k, view), false, system_.element_pressure(state, k));
   if (result.inverted) return false;
 
   const bool mixed = system_.kernel().formulation() == elements::Formulation::mean_dilatation;

@@ -5,7 +5,7 @@
 
 namespace needlefem::material {
 
-PointResponse CorotationalLinear::respond(const Mat3d& F, const double*, VoigtTangent* tangent, double*) const {
+PointResponse CorotationalLinear::respond(const Mat3d& F, const ViscousStress*, VoigtTangent* tangent) const {
   PointResponse response;
   response.stress = second_pk(F, {}, 0.0);
   response.energy = energy(F);

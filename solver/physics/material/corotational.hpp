@@ -57,8 +57,8 @@ struct CorotationalLinear {
     static const std::vector<PronyTerm> none;
     return none;
   }
-  // `viscous` and `viscous_rate` are unused: the law has no internal variables.
-  PointResponse respond(const Mat3d& F, const double* viscous, VoigtTangent* tangent, double* viscous_rate) const;
+  // `viscous` is unused: the law has no internal variables.
+  PointResponse respond(const Mat3d& F, const ViscousStress* viscous, VoigtTangent* tangent) const;
 
   // --- one step from a stored state: elastic, so the state passes through ---------------------
   ViscousState initial_state() const { return {}; }

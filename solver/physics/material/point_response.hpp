@@ -3,15 +3,13 @@
 //
 //   static constexpr bool kVolumetricSplit;   // W = W_iso(C̄) + U(J) with U handled apart
 //   const std::vector<PronyTerm>& prony() const;   // empty for laws without internal variables
-//   PointResponse respond(const Mat3d& F, const double* viscous, VoigtTangent* tangent,
-//                         double* viscous_rate) const;
+//   PointResponse respond(const Mat3d& F, const ViscousStress* viscous, VoigtTangent* tangent) const;
 //   VolumetricResponse volumetric_response(double J) const;   // split laws only
 //
-// `viscous` holds the Prony internal variables Q_i of the point (terms x 6 Voigt, or nullptr for
-// Q = 0). The optional outputs are written where they point, and skipped for nullptr (a
-// residual, the hot loop, wants no tangent): `tangent` receives ∂/∂E of PointResponse::stress at
-// fixed Q (∂S⁰_iso/∂E for a split law, the part a condensation of the Q_i scales,
-// viscoelastic.hpp), `viscous_rate` the rates dQ_i/dt laid out like `viscous`.
+// `viscous` is the Prony part of a step's stress at the point (ViscousStress, below), or nullptr
+// for the elastic response S⁰_iso. The optional `tangent` receives ∂S⁰_iso/∂E for a split law
+// (the part a step scales by its elastic_fraction, viscoelastic.hpp), ∂S/∂E for the others, and
+// is skipped for nullptr (a residual, the hot loop, wants none).
 // The element kernel calls nothing else of a law, so a new law is a new file with these members
 // plus its entry in material.hpp's MaterialLaw (which checks them with PointwiseLaw, below).
 //
@@ -21,6 +19,7 @@
 
 #include <array>
 #include <concepts>
+#include <cstddef>
 #include <vector>
 
 #include "physics/material/tensor.hpp"
@@ -80,10 +79,46 @@ struct VolumetricResponse {
   double slope = 0.0;     // U''(J), Pa
 };
 
+// A material point's Prony history in Voigt form, the stored state of the tissue's viscous
+// stresses: Q_1 ... Q_m, then the elastic stress S⁰_iso at the same time (the recursion needs
+// its increment).
+inline std::size_t prony_history_size(std::size_t terms) { return (terms + 1) * kVoigt; }
+
+// The Prony part of a step's stress at a point: S_iso = elastic_fraction S⁰_iso - history.
+struct ViscousStress {
+  double elastic_fraction = 1.0;
+  Mat3d history;
+};
+
+// What a step of `step` subtracts from elastic_fraction S⁰⁺ at a point whose history is `history`:
+// Σ_i decay_i Q_i + old_gain S⁰ (PronyStep).
+inline ViscousStress viscous_stress(const PronyStep& step, const double* history) {
+  const std::size_t terms = step.terms.size();
+  Voigt h{};
+  for (int m = 0; m < kVoigt; ++m) h[m] = step.old_gain * history[terms * kVoigt + m];
+  for (std::size_t i = 0; i < terms; ++i)
+    for (int m = 0; m < kVoigt; ++m) h[m] += step.terms[i].decay * history[i * kVoigt + m];
+  return {step.elastic_fraction, from_voigt(h.data())};
+}
+
+// The history after the step, from the elastic stress S⁰⁺ at its end.
+inline void advance_history(const PronyStep& step, const Voigt& elastic_stress, double* history) {
+  const std::size_t terms = step.terms.size();
+  double* old_elastic = history + terms * kVoigt;
+  for (std::size_t i = 0; i < terms; ++i)
+    for (int m = 0; m < kVoigt; ++m) {
+      double& q = history[i * kVoigt + m];
+      q = step.terms[i].decay * q + step.terms[i].old_gain * old_elastic[m] + step.terms[i].new_gain * elastic_stress[m];
+    }
+  for (int m = 0; m < kVoigt; ++m) old_elastic[m] = elastic_stress[m];
+}
+
 struct PointResponse {
-  // Second Piola-Kirchhoff stress carried by the strain operator: S⁰_iso - Σ Q_i for a split
-  // law (the volumetric part comes apart, below), all of S for the others.
+  // Second Piola-Kirchhoff stress carried by the strain operator: elastic_fraction S⁰_iso -
+  // history for a split law (the volumetric part comes apart, below), all of S for the others.
   Mat3d stress;
+  // Split laws: S⁰_iso, from which a step advances the point's history (advance_history).
+  Mat3d elastic_stress;
   // Instantaneous strain-energy density, Pa: W_iso for a split law (Q not counted), else W.
   double energy = 0.0;
   // Split laws: U, U'(J), U''(J) at the point's J = det F.
@@ -91,11 +126,10 @@ struct PointResponse {
 };
 
 template <class Law>
-concept PointwiseLaw = requires(const Law& law, const Mat3d& F, const double* viscous, VoigtTangent* tangent,
-                                double* viscous_rate) {
+concept PointwiseLaw = requires(const Law& law, const Mat3d& F, const ViscousStress* viscous, VoigtTangent* tangent) {
   { Law::kVolumetricSplit } -> std::convertible_to<bool>;
   { law.prony() } -> std::same_as<const std::vector<PronyTerm>&>;
-  { law.respond(F, viscous, tangent, viscous_rate) } -> std::same_as<PointResponse>;
+  { law.respond(F, viscous, tangent) } -> std::same_as<PointResponse>;
 } && (!Law::kVolumetricSplit || requires(const Law& law, double J) {
   { law.volumetric_response(J) } -> std::same_as<VolumetricResponse>;
 });

@@ -6,24 +6,13 @@
 
 namespace needlefem::material {
 
-PointResponse PolynomialTissue::respond(const Mat3d& F, const double* viscous, VoigtTangent* tangent,
-                                        double* viscous_rate) const {
+PointResponse PolynomialTissue::respond(const Mat3d& F, const ViscousStress* viscous, VoigtTangent* tangent) const {
   const Mat3d C = right_cauchy_green(F);
   const auto [elastic_stress, elastic_energy] = isochoric.elastic.stress_and_energy(C);
-  const auto& terms = isochoric.terms;
   PointResponse response;
-  response.stress = elastic_stress;
+  response.elastic_stress = elastic_stress;
+  response.stress = viscous ? viscous->elastic_fraction * elastic_stress - viscous->history : elastic_stress;
   response.energy = elastic_energy;
-  if (viscous)
-    for (std::size_t i = 0; i < terms.size(); ++i) response.stress -= from_voigt(viscous + i * kVoigt);
-  if (viscous_rate) {
-    const Voigt s0 = to_voigt(elastic_stress);
-    for (std::size_t i = 0; i < terms.size(); ++i)
-      for (int m = 0; m < kVoigt; ++m) {
-        const std::size_t k = i * kVoigt + m;
-        viscous_rate[k] = terms[i].rate(s0[m], viscous ? viscous[k] : 0.0);
-      }
-  }
   if (tangent) *tangent = to_voigt(isochoric.elastic_tangent(C));
   response.volumetric = volumetric_response(det(F));
   return response;

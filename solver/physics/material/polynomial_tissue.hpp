@@ -6,9 +6,9 @@
 //
 // Its hyperelastic constants are INSTANTANEOUS moduli; the long-term shear modulus is
 // g∞ · 2 (C10 + C01). The law answers in two forms:
-//  * the pointwise response of point_response.hpp, for the element kernel, with the Q_i as
-//    unknowns of the time integrator: S⁰_iso - Σ Q_i, ∂S⁰_iso/∂E, W_iso, U and its slopes, and
-//    the rates dQ_i/dt of PronyTerm::rate;
+//  * the pointwise response of point_response.hpp, for the element kernel, whose caller keeps
+//    the points' histories: elastic_fraction S⁰_iso - history, S⁰_iso, ∂S⁰_iso/∂E, W_iso, U and
+//    its slopes;
 //  * one step of length dt from a stored state (Simo's recursion), for the material-point
 //    driver: second_pk, advance.
 // Tangents are exact derivatives on Dual numbers (tensor.hpp).
@@ -32,7 +32,7 @@ struct PolynomialTissue {
 
   // --- pointwise response (point_response.hpp) -----------------------------------------------
   const std::vector<PronyTerm>& prony() const { return isochoric.terms; }
-  PointResponse respond(const Mat3d& F, const double* viscous, VoigtTangent* tangent, double* viscous_rate) const;
+  PointResponse respond(const Mat3d& F, const ViscousStress* viscous, VoigtTangent* tangent) const;
   VolumetricResponse volumetric_response(double J) const {
     return {volumetric.energy(J), volumetric.pressure(J), volumetric.pressure_derivative()};
   }

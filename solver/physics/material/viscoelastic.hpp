@@ -7,15 +7,15 @@
 // The g_i are fractions of the INSTANTANEOUS modulus: a sudden load gives S⁰_iso, a held one
 // relaxes to g∞ S⁰_iso with g∞ = 1 - Σ g_i (so the long-term shear modulus is g∞ mu0).
 //
-// Two ways to integrate, which tests check against each other:
-//  * The ODE right-hand side and its derivatives, for an integrator (IDA) that keeps Q_i in its
-//    state vector:  ∂(dQ_i/dt)/∂Q_i = -1/τ_i,  ∂(dQ_i/dt)/∂E = (g_i/τ_i) ∂S⁰_iso/∂E.
-//  * One step of length Δt (Simo's exponential recursion): exact when S⁰_iso varies linearly in
-//    time over the step. With x = Δt/τ_i, e_i = exp(-x), h_i = (1 - e_i)/x,
-//      Q_i⁺ = e_i Q_i + g_i [(1 - h_i) S⁰⁺ + (h_i - e_i) S⁰],
-//    derived from Q_i = g_i S⁰ - H_i, H_i(t) = g_i ∫ exp(-(t-s)/τ_i) dS⁰/ds ds, whose update
-//    for linear S⁰ is H_i⁺ = e_i H_i + g_i h_i (S⁰⁺ - S⁰). Δt → 0 gives the instantaneous
-//    (elastic) response, Δt = +inf the fully relaxed one; both are valid arguments.
+// Integrated by Simo's exponential recursion over each step of length Δt, exact when S⁰_iso
+// varies linearly in time over the step. With x = Δt/τ_i, e_i = exp(-x), h_i = (1 - e_i)/x,
+//   Q_i⁺ = e_i Q_i + g_i [(1 - h_i) S⁰⁺ + (h_i - e_i) S⁰],
+// derived from Q_i = g_i S⁰ - H_i, H_i(t) = g_i ∫ exp(-(t-s)/τ_i) dS⁰/ds ds, whose update for
+// linear S⁰ is H_i⁺ = e_i H_i + g_i h_i (S⁰⁺ - S⁰). Δt → 0 gives the instantaneous (elastic)
+// response, Δt = +inf the fully relaxed one; both are valid arguments. The stress after a step
+// is linear in S⁰⁺ (PronyStep), which is what lets the tissue's DAE keep only displacements and
+// pressures as unknowns, the Q_i advanced at each accepted step (mechanics_system.hpp), as
+// Abaqus and FEBio do.
 #pragma once
 
 #include <cmath>
@@ -26,29 +26,39 @@
 
 namespace needlefem::material {
 
-// One term of the series and its rate equation, the only place it is written: the DAE
-// residual, the Newton matrix and its condensation all take it from here.
 struct PronyTerm {
   double g = 0.0;      // relative modulus (fraction of the instantaneous one)
   double tau_s = 1.0;  // relaxation time, s
-
-  // dQ_i/dt = (g_i S⁰_iso - Q_i)/τ_i, for one component of S⁰_iso and Q_i.
-  double rate(double elastic_stress, double q) const { return (g * elastic_stress - q) / tau_s; }
-  // ∂(dQ_i/dt)/∂Q_i = -1/τ_i (times the identity: no coupling between terms or components).
-  double rate_slope() const { return -1.0 / tau_s; }
-  // ∂(dQ_i/dt)/∂S⁰_iso = g_i/τ_i, so ∂(dQ_i/dt)/∂E = (g_i/τ_i) ∂S⁰_iso/∂E.
-  double rate_gain() const { return g / tau_s; }
 };
 
-// The factor of ∂S⁰_iso/∂E left in a Newton matrix J = ∂F/∂y + c_j ∂F/∂y' once the Q_i are
-// condensed out: with J_QQ = c_j - rate_slope and J_Qu = -rate_gain ∂S⁰_iso/∂E B,
-//   1 - Σ_i rate_gain_i / (c_j - rate_slope_i) = 1 - Σ_i g_i/(1 + c_j τ_i)
-// (c_j = +inf: 1, the instantaneous response; c_j = 0: g∞, the relaxed one).
-inline double condensed_fraction(const std::vector<PronyTerm>& terms, double cj) {
-  double fraction = 1.0;
-  if (std::isinf(cj)) return fraction;
-  for (const auto& term : terms) fraction -= term.g / (1.0 + cj * term.tau_s);
-  return fraction;
+// Simo's recursion over one step of length dt as the coefficients every point shares, the only
+// place they are computed:
+//   Q_i⁺ = decay_i Q_i + old_gain_i S⁰ + new_gain_i S⁰⁺,
+//   decay_i = e_i,  old_gain_i = g_i (h_i - e_i),  new_gain_i = g_i (1 - h_i),
+// so the stress after the step, S_iso⁺ = S⁰⁺ - Σ_i Q_i⁺, is
+//   elastic_fraction S⁰⁺ - (Σ_i decay_i Q_i + old_gain S⁰),
+// elastic_fraction = 1 - Σ_i new_gain_i (1 at dt = 0, g∞ at dt = inf), old_gain = Σ_i old_gain_i.
+// ∂S_iso⁺/∂E = elastic_fraction ∂S⁰_iso/∂E: the consistent tangent of a step.
+struct PronyStep {
+  struct Term {
+    double decay = 1.0, old_gain = 0.0, new_gain = 0.0;
+  };
+  std::vector<Term> terms;
+  double elastic_fraction = 1.0;
+  double old_gain = 0.0;
+};
+
+inline PronyStep prony_step(const std::vector<PronyTerm>& terms, double dt) {
+  PronyStep step;
+  for (const auto& term : terms) {
+    const double x = dt / term.tau_s;
+    const double e = std::exp(-x);
+    const double h = x > 0.0 ? -std::expm1(-x) / x : 1.0;  // (1 - e)/x -> 1 as x -> 0, 0 as x -> inf
+    step.terms.push_back({e, term.g * (h - e), term.g * (1.0 - h)});
+    step.elastic_fraction -= step.terms.back().new_gain;
+    step.old_gain += step.terms.back().old_gain;
+  }
+  return step;
 }
 
 // Internal state of a viscoelastic material point: one Q_i per Prony term, and the elastic
@@ -71,29 +81,12 @@ struct Viscoelastic {
 
   ViscousState initial_state() const { return {std::vector<Mat3d>(terms.size()), Mat3d{}}; }
 
-  // --- ODE form ------------------------------------------------------------------------------
   // S_iso = S⁰_iso - Σ Q_i for given internal variables.
   template <class T>
   Mat3<T> stress(const Mat3<T>& C, const std::vector<Mat3d>& q) const {
     Mat3<T> s = elastic.stress(C);
     for (const auto& q_i : q) s -= lift<T>(q_i);
     return s;
-  }
-  // dQ_i/dt for all terms (PronyTerm::rate, component by component).
-  std::vector<Mat3d> viscous_rate(const Mat3d& C, const std::vector<Mat3d>& q) const {
-    const Mat3d s0 = elastic.stress(C);
-    std::vector<Mat3d> rate(terms.size());
-    for (std::size_t i = 0; i < terms.size(); ++i)
-      for (int n = 0; n < 9; ++n) rate[i].a[n] = terms[i].rate(s0.a[n], q[i].a[n]);
-    return rate;
-  }
-  // ∂(dQ_i/dt)/∂Q_i, times the identity.
-  double viscous_rate_dq(std::size_t i) const { return terms[i].rate_slope(); }
-  // ∂(dQ_i/dt)/∂E = (g_i/τ_i) ∂S⁰_iso/∂E.
-  Tensor4 viscous_rate_de(const Mat3d& C, std::size_t i) const {
-    Tensor4 d = elastic_tangent(C);
-    for (auto& v : d.a) v *= terms[i].rate_gain();
-    return d;
   }
   // ∂S⁰_iso/∂E (E = (C - I)/2, so dC = 2 dE).
   Tensor4 elastic_tangent(const Mat3d& C) const {
@@ -106,8 +99,9 @@ struct Viscoelastic {
   template <class T>
   Mat3<T> stepped_stress(const Mat3<T>& C, const ViscousState& old, double dt) const {
     const Mat3<T> s0 = elastic.stress(C);
+    const PronyStep step = prony_step(terms, dt);
     Mat3<T> s = s0;
-    for (std::size_t i = 0; i < terms.size(); ++i) s -= stepped_q(i, s0, old, dt);
+    for (std::size_t i = 0; i < terms.size(); ++i) s -= stepped_q(step.terms[i], s0, old, i);
     return s;
   }
   // Consistent tangent ∂S_iso/∂E of stepped_stress (the isochoric block of a mixed element):
@@ -117,17 +111,15 @@ struct Viscoelastic {
   }
   ViscousState advance(const Mat3d& C, const ViscousState& old, double dt) const {
     ViscousState next{std::vector<Mat3d>(terms.size()), elastic.stress(C)};
-    for (std::size_t i = 0; i < terms.size(); ++i) next.q[i] = stepped_q(i, next.elastic_stress, old, dt);
+    const PronyStep step = prony_step(terms, dt);
+    for (std::size_t i = 0; i < terms.size(); ++i) next.q[i] = stepped_q(step.terms[i], next.elastic_stress, old, i);
     return next;
   }
 
  private:
   template <class T>
-  Mat3<T> stepped_q(std::size_t i, const Mat3<T>& s0_new, const ViscousState& old, double dt) const {
-    const double x = dt / terms[i].tau_s;
-    const double e = std::exp(-x);
-    const double h = x > 0.0 ? -std::expm1(-x) / x : 1.0;  // (1 - e)/x -> 1 as x -> 0, 0 as x -> inf
-    return lift<T>(e * old.q[i] + terms[i].g * (h - e) * old.elastic_stress) + (terms[i].g * (1.0 - h)) * s0_new;
+  Mat3<T> stepped_q(const PronyStep::Term& step, const Mat3<T>& s0_new, const ViscousState& old, std::size_t i) const {
+    return lift<T>(step.decay * old.q[i] + step.old_gain * old.elastic_stress) + step.new_gain * s0_new;
   }
 };
 

@@ -46,8 +46,10 @@ MechanicsSystem::MechanicsSystem(const TetMesh& mesh, const material::Material& 
       conditions_(std::move(conditions)),
       kernel_(material, formulation),
       assembly_(mesh.nodes_per_tet, element_blocks(mesh, dofs_), block_positions(mesh, dofs_)) {
-  const int points = static_cast<int>(elements::element_quadrature(mesh.nodes_per_tet).size());
-  viscous_per_element_ = static_cast<PetscInt>(points) * kernel_.prony_terms() * elements::kVoigt;
+  const std::size_t points = elements::element_quadrature(mesh.nodes_per_tet).size();
+  if (kernel_.prony_terms()) history_per_element_ = points * material::prony_history_size(kernel_.prony().size());
+  viscous_history_.assign(history_per_element_ * dofs_.tissue_tets.size(), 0.0);
+  accepted_step_ = material::prony_step(kernel_.prony(), 0.0);
   prescribed_.assign(dofs_.dof_count, 0);
   for (const auto& d : conditions_.dofs) prescribed_[d.dof] = 1;
 }
@@ -61,30 +63,43 @@ std::unique_ptr<MechanicsSystem> MechanicsSystem::from_spec(const MechanicsSpec&
 }
 
 void MechanicsSystem::initial_state(double t0, Vec y, Vec ydot) {
+  std::fill(viscous_history_.begin(), viscous_history_.end(), 0.0);
+  history_time_ = t0;
   check(VecSet(y, 0.0), "VecSet");
   check(VecSet(ydot, 0.0), "VecSet");
   WriteArray values(y);
   for (const auto& d : conditions_.dofs) values.data()[d.dof] = conditions_.value(mesh_, d, t0);
 }
 
-void MechanicsSystem::differential_mask(Vec id) {
-  WriteArray mask(id);
-  std::fill(mask.data(), mask.data() + displacement_dofs(), 0.0);
-  std::fill(mask.data() + displacement_dofs(), mask.data() + pressure_offset(), 1.0);
-  std::fill(mask.data() + pressure_offset(), mask.data() + local_size(), 0.0);
-}
+void MechanicsSystem::differential_mask(Vec id) { check(VecSet(id, 0.0), "VecSet"); }
 
-void MechanicsSystem::absolute_tolerances(Vec atol, double displacement_m, double viscous_stress_pa,
-                                          double pressure_pa) const {
+void MechanicsSystem::absolute_tolerances(Vec atol, double displacement_m, double pressure_pa) const {
   WriteArray values(atol);
   std::fill(values.data(), values.data() + displacement_dofs(), displacement_m);
-  std::fill(values.data() + displacement_dofs(), values.data() + pressure_offset(), viscous_stress_pa);
   std::fill(values.data() + pressure_offset(), values.data() + local_size(), pressure_pa);
 }
 
-bool MechanicsSystem::assemble_internal(const double* y, const double* ydot, double* f_u, double* f_q,
+material::PronyStep MechanicsSystem::prony_step_to(double t) const {
+  if (t < history_time_)
+    throw std::logic_error(fmt::format("a residual at t = {} s before the last accepted step at {} s", t, history_time_));
+  return material::prony_step(kernel_.prony(), t - history_time_);
+}
+
+const elements::ViscousStep* MechanicsSystem::viscous_step(std::size_t tissue_element, const material::PronyStep& step,
+                                                           elements::ViscousStep& view) const {
+  if (!history_per_element_) return nullptr;
+  view = {&step, viscous_history_.data() + tissue_element * history_per_element_};
+  return &view;
+}
+
+const elements::ViscousStep* MechanicsSystem::accepted_viscous_state(std::size_t tissue_element,
+                                                                     elements::ViscousStep& view) const {
+  return viscous_step(tissue_element, accepted_step_, view);
+}
+
+bool MechanicsSystem::assemble_internal(const double* y, const material::PronyStep& step, double* f_u, double* f_p,
                                         double* energy) const {
-  const int n = mesh_.nodes_per_tet, terms = kernel_.prony_terms();
+  const int n = mesh_.nodes_per_tet;
   std::fill(f_u, f_u + displacement_dofs(), 0.0);
   std::atomic<bool> inverted = false;
   std::vector<double> element_energy(energy ? assembly_.elements() : 0);
@@ -92,11 +107,9 @@ bool MechanicsSystem::assemble_internal(const double* y, const double* ydot, dou
     if (inverted.load(std::memory_order_relaxed)) return;
     std::array<double, elements::kMaxElementDofs> u_e{};
     assembly_.gather(k, y, u_e.data());
-    const double* q = terms ? y + viscous_offset(k) : nullptr;
-    // The viscous rows receive the rates dQ/dt first, laid out like Q.
-    double* f_q_element = f_q && terms ? f_q + (viscous_offset(k) - displacement_dofs()) : nullptr;
+    elements::ViscousStep view;
     const elements::ElementResult element =
-        kernel_.evaluate(assembly_.geometry(k), u_e.data(), q, false, 1.0, element_pressure(y, k), f_q_element);
+        kernel_.evaluate(assembly_.geometry(k), u_e.data(), viscous_step(k, step, view), false, element_pressure(y, k));
     if (element.inverted) {
       inverted = true;
       return;
@@ -105,13 +118,8 @@ bool MechanicsSystem::assemble_internal(const double* y, const double* ydot, dou
     const int* blocks = assembly_.blocks(k);
     for (int a = 0; a < n; ++a)
       for (int c = 0; c < 3; ++c) forces[3 * blocks[a] + c] += element.residual[3 * a + c];
-    // F_p = p - U'(θ), behind the viscous rows.
-    if (f_q && pressure_unknowns())
-      f_q[viscous_dofs() + static_cast<PetscInt>(k)] = y[pressure_offset() + k] - element.volume_pressure;
-    if (!f_q_element) return;
-    // F_Q = Q' - dQ/dt.
-    const double* q_rate = ydot + viscous_offset(k);
-    for (PetscInt v = 0; v < viscous_per_element_; ++v) f_q_element[v] = q_rate[v] - f_q_element[v];
+    // F_p = p - U'(θ).
+    if (f_p && pressure_unknowns()) f_p[k] = y[pressure_offset() + k] - element.volume_pressure;
   });
   if (energy) *energy = std::accumulate(element_energy.begin(), element_energy.end(), 0.0);
   return !inverted;
@@ -121,7 +129,7 @@ DaeStatus MechanicsSystem::residual(double t, Vec y, Vec ydot, Vec F) {
   return guarded([&] {
     ReadArray state(y), rate(ydot);
     WriteArray out(F);
-    if (!assemble_internal(state.data(), rate.data(), out.data(), out.data() + displacement_dofs(), nullptr)) {
+    if (!assemble_internal(state.data(), prony_step_to(t), out.data(), out.data() + pressure_offset(), nullptr)) {
       ++rejections_.inverted_residuals;
       return DaeStatus::recoverable;
     }
@@ -133,8 +141,31 @@ DaeStatus MechanicsSystem::residual(double t, Vec y, Vec ydot, Vec F) {
 }
 
 void MechanicsSystem::step_accepted(double t, Vec y, Vec ydot) {
-  if (surface_loads_.empty()) return;
   ReadArray state(y), rate(ydot);
+  if (history_per_element_) {
+    const material::PronyStep step = prony_step_to(t);
+    std::atomic<bool> inverted = false;
+#pragma omp parallel for schedule(static)
+    for (std::size_t k = 0; k < assembly_.elements(); ++k) {
+      std::array<double, elements::kMaxElementDofs> u_e{};
+      assembly_.gather(k, state.data(), u_e.data());
+      elements::ViscousStep view;
+      const elements::ElementResult element = kernel_.evaluate(assembly_.geometry(k), u_e.data(),
+                                                               viscous_step(k, step, view), false,
+                                                               element_pressure(state.data(), k));
+      if (element.inverted) {
+        inverted = true;
+        continue;
+      }
+      double* history = viscous_history_.data() + k * history_per_element_;
+      const std::size_t per_point = material::prony_history_size(kernel_.prony().size());
+      for (int p = 0; p < assembly_.geometry(k).points; ++p)
+        material::advance_history(step, element.points[p].elastic_stress, history + p * per_point);
+    }
+    // IDA accepted the state, so its residual was evaluated there without an inverted element.
+    if (inverted) throw std::logic_error("an accepted step has an inverted element");
+    history_time_ = t;
+  }
   for (const auto& load : surface_loads_) load->accept_step(t, state.data(), rate.data(), dofs_);
 }
 
@@ -143,7 +174,7 @@ DaeStatus MechanicsSystem::assemble_condensed(double t, Vec y, Vec ydot, double 
   matrix = assembly_.matrix();
   {
     ReadArray state(y), rate(ydot);
-    const bool inverted = !assemble_condensed_matrix(state.data(), cj);
+    const bool inverted = !assemble_condensed_matrix(state.data(), t);
     if (!inverted)
       for (const auto& load : surface_loads_)
         load->add_jacobian(t, state.data(), rate.data(), cj, dofs_, assembly_.matrix(), form);
@@ -162,10 +193,8 @@ DaeStatus MechanicsSystem::assemble_condensed(double t, Vec y, Vec ydot, double 
   }
 }
 
-bool MechanicsSystem::assemble_condensed_matrix(const double* state, double cj) {
-  const int terms = kernel_.prony_terms();
-  const double scale = material::condensed_fraction(kernel_.prony(), cj);
-  if (terms) condensation_.resize(assembly_.elements());
+bool MechanicsSystem::assemble_condensed_matrix(const double* state, double t) {
+  const material::PronyStep step = prony_step_to(t);
   if (pressure_unknowns()) {
     pressure_gradient_.resize(assembly_.elements());
     pressure_stiffness_.resize(assembly_.elements());
@@ -174,18 +203,12 @@ bool MechanicsSystem::assemble_condensed_matrix(const double* state, double cj) 
       [&](std::size_t k, elements::ElementResult& element) {
         std::array<double, elements::kMaxElementDofs> u_e{};
         assembly_.gather(k, state, u_e.data());
-        const double* q = terms ? state + viscous_offset(k) : nullptr;
-        const elements::ElementGeometry& geometry = assembly_.geometry(k);
-        element = kernel_.evaluate(geometry, u_e.data(), q, true, scale, element_pressure(state, k));
-        if (element.inverted) return;
-        if (pressure_unknowns()) {
-          pressure_gradient_[k] = element.volume_gradient;
-          pressure_stiffness_[k] = element.pressure_stiffness;
-        }
-        if (terms)
-          for (int p = 0; p < geometry.points; ++p)
-            condensation_[k].set_point(p, element.points[p], geometry.gradient_at(p), mesh_.nodes_per_tet,
-                                       geometry.weight[p]);
+        elements::ViscousStep view;
+        element = kernel_.evaluate(assembly_.geometry(k), u_e.data(), viscous_step(k, step, view), true,
+                                   element_pressure(state, k));
+        if (element.inverted || !pressure_unknowns()) return;
+        pressure_gradient_[k] = element.volume_gradient;
+        pressure_stiffness_[k] = element.pressure_stiffness;
       },
       nullptr, true);
 }
@@ -194,91 +217,46 @@ bool MechanicsSystem::newton_matrix_serves(double factored_cj, double cj) const 
   constexpr double kServingTangentChange = 1e-3;
   for (const auto& load : surface_loads_)
     if (load->depends_on_rates()) return false;
-  const double factored = material::condensed_fraction(kernel_.prony(), factored_cj);
-  const double needed = material::condensed_fraction(kernel_.prony(), cj);
+  const double factored = material::prony_step(kernel_.prony(), 1.0 / factored_cj).elastic_fraction;
+  const double needed = material::prony_step(kernel_.prony(), 1.0 / cj).elastic_fraction;
   return std::abs(factored - needed) <= kServingTangentChange * needed;
 }
 
-MechanicsSystem::ViscousSolveFactors MechanicsSystem::viscous_solve_factors(double cj) const {
-  const auto& prony = kernel_.prony();
-  ViscousSolveFactors f{std::vector<double>(prony.size()), std::vector<double>(prony.size())};
-  // J_QQ⁻¹ = 1 / (cj - ∂rate/∂Q) = 1 / (cj + 1/τ_i) and ∂rate/∂S⁰ = g_i / τ_i (PronyTerm).
-  for (std::size_t i = 0; i < prony.size(); ++i) {
-    f.relaxation[i] = 1.0 / (cj - prony[i].rate_slope());
-    f.rate_gain[i] = prony[i].rate_gain();
-  }
-  return f;
-}
-
-std::size_t MechanicsSystem::condensed_elements() const {
-  return kernel_.prony_terms() || pressure_unknowns() ? assembly_.elements() : 0;
-}
-
-void MechanicsSystem::condense(Vec b, double cj, Vec condensed_rhs) {
-  const int n = mesh_.nodes_per_tet, terms = kernel_.prony_terms();
+void MechanicsSystem::condense(Vec b, double /*cj*/, Vec condensed_rhs) {
+  const int n = mesh_.nodes_per_tet;
   const PetscInt nu = displacement_dofs();
-  const std::vector<double> relaxation = viscous_solve_factors(cj).relaxation;
   ReadArray in(b);
   WriteArray rhs(condensed_rhs);
   double* r = rhs.data();
   std::copy(in.data(), in.data() + nu, r);
-  assembly_.sum_over_elements(condensed_elements(), r, nu, [&](std::size_t k, double* sums) {
-    std::array<double, elements::kMaxElementDofs> force{};
-    // -a_e b_p (the pressure row gives x_p = b_p + (U''/V_e) a_eᵀ x_u).
-    if (pressure_unknowns()) {
-      const double b_p = in.data()[pressure_offset() + static_cast<PetscInt>(k)];
-      for (int c = 0; c < 3 * n; ++c) force[c] = -pressure_gradient_[k][c] * b_p;
-    }
-    // Σ_q w_q B_qᵀ Σ_i b_Qi / (cj + 1/τ_i).
-    if (terms) {
-      std::array<elements::PointLanes, elements::kVoigt> source{};
-      for (int p = 0; p < assembly_.geometry(k).points; ++p) {
-        const double* b_q = in.data() + viscous_offset(k) + static_cast<PetscInt>(p) * terms * elements::kVoigt;
-        for (int m = 0; m < elements::kVoigt; ++m) {
-          double sum = 0.0;
-          for (int i = 0; i < terms; ++i) sum += relaxation[i] * b_q[i * elements::kVoigt + m];
-          source[m][p] = static_cast<float>(sum);
-        }
-      }
-      condensation_[k].add_stress_transpose(source, n, force.data());
-    }
+  if (!pressure_unknowns()) return;
+  // -a_e b_p (the pressure row gives x_p = b_p + (U''/V_e) a_eᵀ x_u).
+  assembly_.sum_over_elements(assembly_.elements(), r, nu, [&](std::size_t k, double* sums) {
+    const double b_p = in.data()[pressure_offset() + static_cast<PetscInt>(k)];
     const int* blocks = assembly_.blocks(k);
     for (int a = 0; a < n; ++a)
       for (int c = 0; c < 3; ++c) {
         const int dof = 3 * blocks[a] + c;
-        if (!prescribed_[dof]) sums[dof] += force[3 * a + c];
+        if (!prescribed_[dof]) sums[dof] -= pressure_gradient_[k][3 * a + c] * b_p;
       }
   });
 }
 
-void MechanicsSystem::expand(Vec b, Vec condensed_solution, double cj, Vec x) {
-  const int n = mesh_.nodes_per_tet, terms = kernel_.prony_terms();
+void MechanicsSystem::expand(Vec b, Vec condensed_solution, double /*cj*/, Vec x) {
+  const int n = mesh_.nodes_per_tet;
   const PetscInt nu = displacement_dofs();
-  const ViscousSolveFactors factors = viscous_solve_factors(cj);
-  const std::size_t elements = condensed_elements();
   ReadArray in(b), x_u(condensed_solution);
   WriteArray out(x);
   std::copy(x_u.data(), x_u.data() + nu, out.data());
+  if (!pressure_unknowns()) return;
 #pragma omp parallel for schedule(static)
-  for (std::size_t k = 0; k < elements; ++k) {
+  for (std::size_t k = 0; k < assembly_.elements(); ++k) {
     std::array<double, elements::kMaxElementDofs> u_e{};
     assembly_.gather(k, x_u.data(), u_e.data());
-    if (pressure_unknowns()) {
-      const PetscInt row = pressure_offset() + static_cast<PetscInt>(k);
-      double volume_change = 0.0;  // a_eᵀ x_u
-      for (int c = 0; c < 3 * n; ++c) volume_change += pressure_gradient_[k][c] * u_e[c];
-      out.data()[row] = in.data()[row] + pressure_stiffness_[k] * volume_change;
-    }
-    if (!terms) continue;
-    const auto stress = condensation_[k].tangent_stress(u_e.data(), n);  // D⁰ B x_u, a lane per point
-    for (int p = 0; p < assembly_.geometry(k).points; ++p) {
-      const PetscInt offset = viscous_offset(k) + static_cast<PetscInt>(p) * terms * elements::kVoigt;
-      for (int i = 0; i < terms; ++i)
-        for (int m = 0; m < elements::kVoigt; ++m) {
-          const PetscInt row = offset + i * elements::kVoigt + m;
-          out.data()[row] = factors.relaxation[i] * (in.data()[row] + factors.rate_gain[i] * stress[m][p]);
-        }
-    }
+    const PetscInt row = pressure_offset() + static_cast<PetscInt>(k);
+    double volume_change = 0.0;  // a_eᵀ x_u
+    for (int c = 0; c < 3 * n; ++c) volume_change += pressure_gradient_[k][c] * u_e[c];
+    out.data()[row] = in.data()[row] + pressure_stiffness_[k] * volume_change;
   }
 }
 
@@ -286,7 +264,7 @@ MechanicsSystem::Resultants MechanicsSystem::resultants(Vec y, const std::vector
   ReadArray state(y);
   std::vector<double> f_u(displacement_dofs());
   Resultants result;
-  if (!assemble_internal(state.data(), nullptr, f_u.data(), nullptr, &result.elastic_energy))
+  if (!assemble_internal(state.data(), accepted_step_, f_u.data(), nullptr, &result.elastic_energy))
     throw std::runtime_error("reaction forces: inverted element");
   for (const auto& surface : surfaces) {
     const auto faces = mesh_.surface_faces.find(surface);
