@@ -1,7 +1,7 @@
 // A DAE system whose Newton matrix the physics condenses onto part of its unknowns, and whose
 // condensed matrix the integration stage factors: the physics assembles that matrix and maps
-// right-hand sides onto it and solutions back (the tissue: viscous stresses and element
-// pressures eliminated element by element, mechanics_system.hpp); NewtonMatrixFactor
+// right-hand sides onto it and solutions back (the tissue: element pressures eliminated element
+// by element, mechanics_system.hpp); NewtonMatrixFactor
 // (newton_matrix_factor.hpp) chooses how to factor and solve it. So IDA's setup and solve
 // (DaeSystem::setup_jacobian, solve_jacobian) are this class's, the same for every such system:
 //   setup:  K̂ = assemble_condensed(t, y, y', c_j, form), form as the factor wants it;

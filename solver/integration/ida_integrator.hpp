@@ -73,10 +73,10 @@ struct IdaOptions {
   // iterations per Newton iteration of the step that factored it. 0: only when GMRES fails.
   double krylov_aged_matrix_ratio = 2.0;
   // IDA refreshes the Newton matrix when cj = alpha/h has changed by more than this fraction
-  // since the last setup (IDA's default 0.25). The tissue's matrix barely depends on cj (only
-  // through the condensed viscous factor 1 - Σ g_i/(1 + cj τ_i), mechanics_system.hpp), so a
-  // larger value saves factorisations when steps grow; the cj-dependent viscous rows then
-  // converge linearly at rate |1 - cj/cj_setup|.
+  // since the last setup (IDA's default 0.25). The tissue's matrix depends on cj only through
+  // rate-dependent surface loads (friction's slip velocity), and on the step only through the
+  // Prony step's elastic fraction (mechanics_system.hpp), so a larger value saves
+  // factorisations when steps grow.
   double newton_matrix_cj_change = 0.25;
   long max_steps_per_advance = 100000;
   // Leave algebraic components (mask 0) out of the local error test.

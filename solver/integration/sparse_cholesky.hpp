@@ -7,7 +7,7 @@
 // J is a PETSc SeqAIJ matrix with a symmetric nonzero pattern whose prescribed (Dirichlet) rows
 // may already be identity rows. With f the free and p the prescribed unknowns, solve() returns
 //   x_p = b_p,    x_f = S_ff⁻¹ (b_f - J_fp b_p),    S_ff = (J_ff + J_ffᵀ) / 2,
-// which is J⁻¹ b exactly when J_ff is symmetric (hyperelastic tangent, condensed Prony terms,
+// which is J⁻¹ b exactly when J_ff is symmetric (hyperelastic tangent scaled by a Prony step,
 // normal contact penalty). Coulomb friction adds an unsymmetric part: S_ff is then the
 // preconditioner of IDA's GMRES rather than an exact inverse.
 //

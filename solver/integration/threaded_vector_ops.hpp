@@ -1,6 +1,7 @@
 // IDA's and its GMRES's vector operations on a sequential PETSc state vector, run on the OpenMP
 // threads. NVECTOR_PETSC maps them to PETSc's Vec operations, which run on one thread; on the
-// 736k-long brain-tip state (92 % of it Prony variables) they are memory-bound, and two threads
+// brain-tip state (measured on 736k unknowns, when the Prony variables were in it; 235k at the
+// default case's level 2 now) they are memory-bound, and two threads
 // read nearly twice the bandwidth of one, so IDA's and GMRES's own work per iteration shrinks
 // (the measurements: docs/speed.md, "What is in place").
 //
