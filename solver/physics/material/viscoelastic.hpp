@@ -81,13 +81,6 @@ struct Viscoelastic {
 
   ViscousState initial_state() const { return {std::vector<Mat3d>(terms.size()), Mat3d{}}; }
 
-  // S_iso = S⁰_iso - Σ Q_i for given internal variables.
-  template <class T>
-  Mat3<T> stress(const Mat3<T>& C, const std::vector<Mat3d>& q) const {
-    Mat3<T> s = elastic.stress(C);
-    for (const auto& q_i : q) s -= lift<T>(q_i);
-    return s;
-  }
   // ∂S⁰_iso/∂E (E = (C - I)/2, so dC = 2 dE).
   Tensor4 elastic_tangent(const Mat3d& C) const {
     return green_strain_jacobian(C, [&](const Mat3<Dual>& c) { return elastic.stress(c); });
