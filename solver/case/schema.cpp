@@ -171,7 +171,7 @@ std::vector<KeySpec> build_schema() {
            "Bevel tip: radius rho of the rounding of the bevel-cylinder and fillet-cylinder edges (capped by the "
            "fillet); CAD tip: of every convex edge. The contact needle is rounded with it (its normal is then continuous where the tissue "
            "presses on an edge) and the mesh is graded to resolve it (element size rho / 2^mesh.refinement_level "
-           "on the edges). A ground needle's edge radius is a few to some tens of micrometres; the default is "
+           "on the edges; mesh.edge_elements_per_radius). A ground needle's edge radius is a few to some tens of micrometres; the default is "
            "the smallest radius with which the penalty contact's Newton iteration runs the default tip on the "
            "graded mesh (docs/study.md, Edge radius and mesh grading)"),
       real("needle.shaft_mm", 0.1, 0.0, 100.0, "Straight shaft behind the bevel heel (or behind the neck)"),
@@ -278,6 +278,12 @@ std::vector<KeySpec> build_schema() {
               "Mesh refinement near the needle: each level halves every element size near the needle (its "
               "surface and edges; the graded zone keeps its extent), and the block scene's element size; "
               "`needlefem converge` runs three consecutive levels"),
+      integer("mesh.edge_elements_per_radius", 1, 1, 4,
+              "Brain-tip scene, bevel and CAD tips: the element size on the needle's edges at "
+              "mesh.refinement_level 0 is max(rho, tissue.core_element_mm / 4) divided by this (rho: "
+              "needle.edge_radius_um), halved per level. 1 resolves the rounding from level 1 on; 2 from level "
+              "0, which the 10 deg bevels' volume above the strain limit needs for a converged band, on a "
+              "larger mesh (docs/accuracy.md section 14)"),
 
       // --- time integration (SUNDIALS IDA) and Newton-matrix solves (PETSc KSP) -------------
       real("integration.relative_tolerance", 3e-4, 0.0, 1.0,

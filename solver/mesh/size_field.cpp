@@ -23,13 +23,15 @@ using DimTags = gmsh::vectorpair;
 // The element size is the minimum of the core/outer Box field and two Threshold fields on the
 // distance d to the cavity:
 //   edges (the sharp curves of the cavity: bevel-cylinder, fillet-cylinder):
-//     h = h_e + (h_core - h_e) d / D,   h_e = max(kEdgeSizePerRadius ρ, kEdgeSizePerCore h_core) / 2^L
+//     h = h_e + (h_core - h_e) d / D,   h_e = max(kEdgeSizePerRadius ρ, kEdgeSizePerCore h_core) / (n 2^L)
 //   surface (all faces of the cavity):
 //     h = h_s + (h_core - h_s) d / D,   h_s = kSurfaceSizePerCore h_core / 2^L
-// both capped at h_core beyond D = h_core / kGrowth. h_e = ρ at level 0 on the paper's 0.4 mm
-// core (quadratic elements span the rounding's arc in about one element); a coarser core keeps
-// its edges at a quarter of its size at level 0, so a coarse mesh stays cheap and refinement
-// levels still halve every size. D is a physical length, the same at every
+// both capped at h_core beyond D = h_core / kGrowth. n = mesh.edge_elements_per_radius. With
+// n = 1, h_e = ρ at level 0 on the paper's 0.4 mm core (quadratic elements span the rounding's arc
+// in about one element); a coarser core keeps its edges at a quarter of its size at level 0, so a
+// coarse mesh stays cheap and refinement levels still halve every size. n = 2 resolves the
+// rounding from level 0: the 10° bevels' volume above the strain limit lies in a strip along the
+// leading edge whose band converges only then (docs/accuracy.md §14). D is a physical length, the same at every
 // level, so the graded zone keeps its extent while every size near the needle halves per level;
 // the size grows by at most a factor 1 + kGrowth from one element layer to the next.
 constexpr double kEdgeSizePerRadius = 1.0;
@@ -134,7 +136,8 @@ std::vector<int> add_needle_grading(const MeshSpec& spec, const std::vector<int>
   if (edges.empty()) return fields;
   grading.edge_target_mm = std::min(
       grading.surface_target_mm,
-      std::max(kEdgeSizePerRadius * grading.edge_radius_mm, kEdgeSizePerCore * h_core) * factor);
+      std::max(kEdgeSizePerRadius * grading.edge_radius_mm, kEdgeSizePerCore * h_core) * factor /
+          static_cast<double>(spec.edge_elements_per_radius));
   double length = 0;
   for (int e : edges) {
     double mass = 0;

@@ -406,12 +406,14 @@ TEST(InsertionForceSpec, EachKeyReachesItsOwnFieldWithTheSchemasDefault) {
 }
 
 // The mesh spec's keys that reach the mesh report and the summary beside the mesher.
-TEST(MeshSpec, PartitionsAndRefinementLevelReachTheirFieldsWithTheSchemasDefault) {
+TEST(MeshSpec, PartitionsRefinementLevelAndEdgeElementsReachTheirFieldsWithTheSchemasDefault) {
   const Case defaults = Case::parse("", "a.toml");
-  const auto [by_default, given] =
-      default_and_given_specs(needlefem::parse_mesh_spec, {"mesh.partitions=3", "mesh.refinement_level=2"});
+  const auto [by_default, given] = default_and_given_specs(
+      needlefem::parse_mesh_spec, {"mesh.partitions=3", "mesh.refinement_level=2", "mesh.edge_elements_per_radius=2"});
   EXPECT_EQ(by_default.partitions, defaults.integer("mesh.partitions"));
   EXPECT_EQ(by_default.refinement_level, defaults.integer("mesh.refinement_level"));
+  EXPECT_EQ(by_default.edge_elements_per_radius, 1);
   EXPECT_EQ(given.partitions, 3);
   EXPECT_EQ(given.refinement_level, 2);
+  EXPECT_EQ(given.edge_elements_per_radius, 2);
 }

@@ -1,11 +1,14 @@
 #!/usr/bin/python3
-"""mesh.refinement_level halves the element sizes near the needle, and the block's size.
+"""mesh.refinement_level halves the element sizes near the needle, and the block's size;
+mesh.edge_elements_per_radius = 2 halves those on the needle's edges alone.
 
 Meshes a case at two consecutive levels with `needlefem mesh` and compares the sizes that
 mesh_report.json measured on the meshes themselves (mean edge length of the tissue tets touching
 the cavity's sharp edges, and of those touching the cavity surface; scene_mesher.cpp): each
 median must shrink by 0.5 +- 0.1 per level, and the sizes must follow their targets. For the
-block scene the tet count must grow by about 2^3 per level.
+block scene the tet count must grow by about 2^3 per level. With --edge-elements, level 0 is
+meshed with 1 and 2 edge elements per radius: the edge target and median must halve, the surface
+target stay.
 """
 import argparse
 import json
@@ -22,9 +25,10 @@ def check(condition, message):
         failures.append(message)
 
 
-def mesh(exe, case, out, level, extra):
+def mesh(exe, case, out, level, extra, edge_elements=1):
     out.mkdir(parents=True, exist_ok=True)
-    args = [exe, "mesh", case, "--out", str(out), "--set", f"mesh.refinement_level={level}"] + extra
+    args = [exe, "mesh", case, "--out", str(out), "--set", f"mesh.refinement_level={level}",
+            "--set", f"mesh.edge_elements_per_radius={edge_elements}"] + extra
     result = subprocess.run(args, capture_output=True, text=True)
     check(result.returncode == 0, f"level {level}: needlefem mesh exits 0 ({result.stderr.strip()})")
     return json.loads((out / "mesh_report.json").read_text())
@@ -35,11 +39,23 @@ parser.add_argument("--exe", required=True)
 parser.add_argument("--case", required=True)
 parser.add_argument("--out", required=True, type=Path)
 parser.add_argument("--block", action="store_true")
+parser.add_argument("--edge-elements", action="store_true")
 parser.add_argument("--set", action="append", default=[])
 args = parser.parse_args()
 extra = [x for s in args.set for x in ("--set", s)]
-coarse, fine = (mesh(args.exe, args.case, args.out / f"level{k}", k, extra) for k in (0, 1))
 
+if args.edge_elements:
+    one, two = (mesh(args.exe, args.case, args.out / f"edge_elements{n}", 0, extra, n) for n in (1, 2))
+    ratio = two["grading"]["needle_edge_element_mm"]["median"] / one["grading"]["needle_edge_element_mm"]["median"]
+    check(abs(ratio - 0.5) <= 0.1, f"edge elements: median with 2 per radius / with 1 = {ratio:.3f} (0.5 +- 0.1)")
+    targets = [r["grading"]["target_mm"] for r in (one, two)]
+    check(abs(targets[1]["edge"] / targets[0]["edge"] - 0.5) < 1e-12,
+          f"edge target {targets[0]['edge']:.4f} -> {targets[1]['edge']:.4f} mm")
+    check(targets[1]["surface"] == targets[0]["surface"], f"surface target stays {targets[0]['surface']:.4f} mm")
+    check(one["inverted_tets"] == 0 and two["inverted_tets"] == 0, "no inverted tets")
+    sys.exit(1 if failures else 0)
+
+coarse, fine = (mesh(args.exe, args.case, args.out / f"level{k}", k, extra) for k in (0, 1))
 if args.block:
     ratio = fine["tets"] / coarse["tets"]
     check(5.0 <= ratio <= 11.0, f"block tets grow by {ratio:.2f} per level (8 for halved sizes)")

@@ -32,6 +32,7 @@ MeshSpec parse_mesh_spec(const Case& c) {
           .optimize_high_order = c.flag("mesh.optimize_high_order"),
           .seed = c.integer("mesh.seed"),
           .refinement_level = c.integer("mesh.refinement_level"),
+          .edge_elements_per_radius = c.integer("mesh.edge_elements_per_radius"),
           .partitions = c.integer("mesh.partitions"),
           .needle_tip = parse_needle_tip_spec(c),
           .tissue = parse_tissue_cube_spec(c),
