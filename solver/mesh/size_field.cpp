@@ -31,9 +31,10 @@ using DimTags = gmsh::vectorpair;
 // in about one element); a coarser core keeps its edges at a quarter of its size at level 0, so a
 // coarse mesh stays cheap and refinement levels still halve every size. n = 2 resolves the
 // rounding from level 0: the 10° bevels' volume above the strain limit lies in a strip along the
-// leading edge whose band converges only then (docs/accuracy.md §14). D is a physical length, the same at every
-// level, so the graded zone keeps its extent while every size near the needle halves per level;
-// the size grows by at most a factor 1 + kGrowth from one element layer to the next.
+// leading edge whose band converges only then (docs/accuracy.md §14). D is a physical length,
+// the same at every level, so the graded zone keeps its extent while every size near the needle
+// halves per level; the size grows by at most a factor 1 + kGrowth from one element layer to the
+// next.
 constexpr double kEdgeSizePerRadius = 1.0;
 constexpr double kEdgeSizePerCore = 0.25;
 constexpr double kSurfaceSizePerCore = 0.5;
