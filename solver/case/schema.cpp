@@ -170,8 +170,8 @@ std::vector<KeySpec> build_schema() {
       real("needle.edge_radius_um", 100.0, 0.0, 1000.0,
            "Bevel tip: radius rho of the rounding of the bevel-cylinder and fillet-cylinder edges (capped by the "
            "fillet); CAD tip: of every convex edge. The contact needle is rounded with it (its normal is then continuous where the tissue "
-           "presses on an edge) and the mesh is graded to resolve it (element size rho / 2^mesh.refinement_level "
-           "on the edges; mesh.edge_elements_per_radius). A ground needle's edge radius is a few to some tens of micrometres; the default is "
+           "presses on an edge) and the mesh is graded to resolve it (element size rho / (mesh.edge_elements_per_radius "
+           "x 2^mesh.refinement_level) on the edges). A ground needle's edge radius is a few to some tens of micrometres; the default is "
            "the smallest radius with which the penalty contact's Newton iteration runs the default tip on the "
            "graded mesh (docs/study.md, Edge radius and mesh grading)"),
       real("needle.shaft_mm", 0.1, 0.0, 100.0, "Straight shaft behind the bevel heel (or behind the neck)"),
