@@ -27,8 +27,9 @@ KeySpec real(std::string key, KeyDefault fallback, double min, double max, std::
   s.min_exclusive = min_exclusive;
   return s;
 }
-KeySpec integer(std::string key, long fallback, long min, long max, std::string help) {
-  KeySpec s = make(std::move(key), KeyType::Integer, fallback, std::move(help));
+// `fallback`: a long, or std::monostate for an optional key whose default a parser derives.
+KeySpec integer(std::string key, KeyDefault fallback, long min, long max, std::string help) {
+  KeySpec s = make(std::move(key), KeyType::Integer, std::move(fallback), std::move(help));
   s.min = static_cast<double>(min);
   s.max = static_cast<double>(max);
   s.min_exclusive = false;
@@ -278,12 +279,13 @@ std::vector<KeySpec> build_schema() {
               "Mesh refinement near the needle: each level halves every element size near the needle (its "
               "surface and edges; the graded zone keeps its extent), and the block scene's element size; "
               "`needlefem converge` runs three consecutive levels"),
-      integer("mesh.edge_elements_per_radius", 1, 1, 4,
+      integer("mesh.edge_elements_per_radius", std::monostate{}, 1, 4,
               "Brain-tip scene, bevel and CAD tips: the element size on the needle's edges at "
               "mesh.refinement_level 0 is max(rho, tissue.core_element_mm / 4) divided by this (rho: "
-              "needle.edge_radius_um), halved per level. 1 resolves the rounding from level 1 on; 2 from level "
-              "0, which the 10 deg bevels' volume above the strain limit needs for a converged band, on a "
-              "larger mesh (docs/accuracy.md section 14)"),
+              "needle.edge_radius_um), halved per level. Not given: 2 on bevels under 15 deg, whose volume above "
+              "the strain limit lies along the rounded leading edge and converges only with the rounding "
+              "resolved from level 0; 1 (the rounding resolved from level 1 on) on the other tips, where 2 buys no "
+              "narrower band (docs/accuracy.md section 14). The mesh report gives the value used"),
 
       // --- time integration (SUNDIALS IDA) and Newton-matrix solves (PETSc KSP) -------------
       real("integration.relative_tolerance", 3e-4, 0.0, 1.0,

@@ -353,6 +353,7 @@ nlohmann::json mesh_cache_json(const SceneMeshInfo& info) {
 nlohmann::json to_json(const NeedleGrading& g) {
   return {{"refinement_level", g.refinement_level},
           {"edge_radius_mm", g.edge_radius_mm},
+          {"edge_elements_per_radius", g.edge_elements_per_radius},
           {"target_mm", {{"edge", g.edge_target_mm}, {"surface", g.surface_target_mm}, {"core", g.core_mm}}},
           {"grading_distance_mm", g.grading_distance_mm},
           {"edge_curves", g.edge_curves},
@@ -365,6 +366,7 @@ NeedleGrading grading_from_json(const nlohmann::json& j) {
   g.refinement_level = j.at("refinement_level").get<int>();
   g.edge_radius_mm = j.at("edge_radius_mm").get<double>();
   g.edge_target_mm = j.at("target_mm").at("edge").get<double>();
+  g.edge_elements_per_radius = j.at("edge_elements_per_radius").get<long>();
   g.surface_target_mm = j.at("target_mm").at("surface").get<double>();
   g.core_mm = j.at("target_mm").at("core").get<double>();
   g.grading_distance_mm = j.at("grading_distance_mm").get<double>();

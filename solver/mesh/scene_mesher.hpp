@@ -36,6 +36,7 @@ struct NeedleGrading {
   int refinement_level = 0;
   double edge_radius_mm = 0;           // ρ = min(τ, needle.edge_radius_um); 0 without sharp edges
   double edge_target_mm = 0;           // element size aimed at on the sharp edges
+  long edge_elements_per_radius = 1;   // n, given or by the tip (mesh.edge_elements_per_radius)
   double surface_target_mm = 0;        // ... on the cavity surface
   double core_mm = 0;                  // ... where the grading meets the core size
   double grading_distance_mm = 0;      // distance over which the sizes grow to the core size

@@ -31,7 +31,8 @@ using DimTags = gmsh::vectorpair;
 // in about one element); a coarser core keeps its edges at a quarter of its size at level 0, so a
 // coarse mesh stays cheap and refinement levels still halve every size. n = 2 resolves the
 // rounding from level 0: the 10° bevels' volume above the strain limit lies in a strip along the
-// leading edge whose band converges only then (docs/accuracy.md §14). D is a physical length,
+// leading edge whose band converges only then (docs/accuracy.md §14), so it is the default on
+// bevels under 15° (case/specs/mesh_spec.cpp). D is a physical length,
 // the same at every level, so the graded zone keeps its extent while every size near the needle
 // halves per level; the size grows by at most a factor 1 + kGrowth from one element layer to the
 // next.
@@ -115,6 +116,7 @@ std::vector<int> add_needle_grading(const MeshSpec& spec, const std::vector<int>
   namespace field = gmsh::model::mesh::field;
   const double factor = refinement_size_factor(spec), h_core = spec.tissue.core_element_mm;
   grading.core_mm = h_core;
+  grading.edge_elements_per_radius = spec.edge_elements_per_radius;
   grading.grading_distance_mm = h_core / kGrowth;
   grading.surface_target_mm = kSurfaceSizePerCore * h_core * factor;
   std::vector<int> fields;

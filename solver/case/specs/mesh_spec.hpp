@@ -28,7 +28,7 @@ struct MeshSpec {
   bool optimize_high_order;
   long seed;              // gmsh's random factor
   long refinement_level;  // L: every refined size times 2^-L
-  long edge_elements_per_radius;  // n: the edge size at level 0 is max(ρ, core / 4) / n
+  long edge_elements_per_radius;  // n: the edge size at level 0 is max(ρ, core / 4) / n (given, or by the tip)
   long partitions;        // METIS element partitions (MPI ranks), of the mesh once meshed
   // The brain-tip scene.
   NeedleTipSpec needle_tip;
