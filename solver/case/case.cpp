@@ -304,6 +304,10 @@ std::optional<double> Case::maybe_real(const std::string& key) const {
   if (!has(key)) return std::nullopt;
   return real(key);
 }
+std::optional<long> Case::maybe_integer(const std::string& key) const {
+  if (!has(key)) return std::nullopt;
+  return integer(key);
+}
 std::optional<std::vector<double>> Case::maybe_reals(const std::string& key) const {
   if (!has(key)) return std::nullopt;
   return reals(key);

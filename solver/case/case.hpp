@@ -59,6 +59,7 @@ class Case {
   // Keys without a default (optional) may be absent.
   bool has(const std::string& key) const;
   std::optional<double> maybe_real(const std::string& key) const;
+  std::optional<long> maybe_integer(const std::string& key) const;
   std::optional<std::vector<double>> maybe_reals(const std::string& key) const;
   // A text key naming a file, resolved relative to the case file's folder ("" stays "").
   std::filesystem::path path(const std::string& key) const;

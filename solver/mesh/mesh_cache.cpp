@@ -279,7 +279,9 @@ std::string mesh_cache_key_text(const MeshSpec& spec) {
   line("mesh.optimize_high_order", spec.optimize_high_order);
   line("mesh.seed", spec.seed);
   line("mesh.refinement_level", spec.refinement_level);
-  line("mesh.edge_elements_per_radius", spec.edge_elements_per_radius);
+  // Not given, n follows the tip's keys above by a rule of this executable, both in the key.
+  line("mesh.edge_elements_per_radius",
+       spec.edge_elements_per_radius ? std::to_string(*spec.edge_elements_per_radius) : "by the tip");
   if (!tip.cad_file.empty()) text += fmt::format("needle.cad_file bytes = {}\n", file_hash(tip.cad_file));
   text += fmt::format("gmsh = {}\nexecutable = {}\n", gmsh_version(), executable_hash());
   return text;

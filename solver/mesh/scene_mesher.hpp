@@ -36,7 +36,7 @@ struct NeedleGrading {
   int refinement_level = 0;
   double edge_radius_mm = 0;           // ρ = min(τ, needle.edge_radius_um); 0 without sharp edges
   double edge_target_mm = 0;           // element size aimed at on the sharp edges
-  long edge_elements_per_radius = 1;   // n, given or by the tip (mesh.edge_elements_per_radius)
+  long edge_elements_per_radius = 1;   // n (edge_elements_per_radius above)
   double surface_target_mm = 0;        // ... on the cavity surface
   double core_mm = 0;                  // ... where the grading meets the core size
   double grading_distance_mm = 0;      // distance over which the sizes grow to the core size
@@ -44,6 +44,12 @@ struct NeedleGrading {
   ElementSizeStats edge_elements;      // tissue tets touching those edges
   ElementSizeStats cavity_elements;    // tissue tets touching the cavity surface
 };
+
+// n of the edge grading (mesh/size_field.cpp): mesh.edge_elements_per_radius when given, otherwise
+// by the tip: 2 on bevels sharper than 15° that have edges, whose volume above the strain limit
+// converges only with the rounding resolved from level 0 (docs/accuracy.md §14); 1 on every
+// other tip.
+long edge_elements_per_radius(const MeshSpec& spec, const NeedleTip& tip);
 
 struct SceneMeshInfo {
   std::string needle_description;  // empty for the block scene

@@ -229,7 +229,7 @@ nlohmann::json summary_json(const Case& c, const RunSpecs& specs, const material
                  {"element", scene->mesh.nodes_per_tet == 10 ? "TET10" : "TET4"},
                  {"msh_file", scene->msh_file.string()},
                  {"refinement_level", specs.mesh.refinement_level},
-                 {"edge_elements_per_radius", specs.mesh.edge_elements_per_radius},
+                 {"edge_elements_per_radius", scene->info.grading.edge_elements_per_radius},
                  {"needle_edge_element_mm", scene->info.grading.edge_elements.median},
                  {"cache", mesh_cache_json(scene->info)},
                  {"cavity_rounding", to_json(scene->cavity_rounding)}};

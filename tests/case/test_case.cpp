@@ -412,24 +412,9 @@ TEST(MeshSpec, PartitionsRefinementLevelAndEdgeElementsReachTheirFieldsWithTheSc
       needlefem::parse_mesh_spec, {"mesh.partitions=3", "mesh.refinement_level=2", "mesh.edge_elements_per_radius=2"});
   EXPECT_EQ(by_default.partitions, defaults.integer("mesh.partitions"));
   EXPECT_EQ(by_default.refinement_level, defaults.integer("mesh.refinement_level"));
-  EXPECT_EQ(by_default.edge_elements_per_radius, 1);
+  EXPECT_FALSE(by_default.edge_elements_per_radius.has_value());  // the mesher's, by the tip
   EXPECT_EQ(given.partitions, 3);
   EXPECT_EQ(given.refinement_level, 2);
   EXPECT_EQ(given.edge_elements_per_radius, 2);
 }
 
-// mesh.edge_elements_per_radius not given: 2 on bevels under 15° with edges (the 10° tips), 1 on
-// the rest; a given value stands on any tip.
-TEST(MeshSpec, EdgeElementsPerRadiusFollowsTheBevelAngleUnlessGiven) {
-  const auto n = [](const std::vector<std::string>& overrides) {
-    return needlefem::parse_mesh_spec(Case::parse("", "a.toml", overrides)).edge_elements_per_radius;
-  };
-  EXPECT_EQ(n({"needle.bevel_deg=10"}), 2);
-  EXPECT_EQ(n({"needle.bevel_deg=14.9"}), 2);
-  EXPECT_EQ(n({"needle.bevel_deg=15"}), 1);
-  EXPECT_EQ(n({"needle.bevel_deg=20"}), 1);
-  EXPECT_EQ(n({"needle.bevel_deg=10", "needle.radius_mm=1.25", "needle.fillet_mm=1.25"}), 1);  // rounded: no edges
-  EXPECT_EQ(n({"needle.bevel_deg=10", "mesh.edge_elements_per_radius=1"}), 1);
-  EXPECT_EQ(n({"needle.bevel_deg=20", "mesh.edge_elements_per_radius=3"}), 3);
-  EXPECT_EQ(n({"needle.kind=compliant", "needle.bevel_deg=10"}), 1);
-}

@@ -37,7 +37,7 @@ HANDLED_OTHERWISE = {
     "needle.cad_facet_deg": "the contact needle's triangulation (cad_tip.cpp), not the scene mesh",
     "mesh.partitions": "partitions the mesh once meshed (`needlefem mesh`), not the scene mesh",
 }
-READ = re.compile(r'(?:\bc\.(?:text|real|reals|integer|flag|texts|path|given|has|maybe_real)\(|\bparse_choice\(c, )'
+READ = re.compile(r'(?:\bc\.(?:text|real|reals|integer|flag|texts|path|given|has|maybe_real|maybe_integer)\(|\bparse_choice\(c, )'
                   r'"([a-z_0-9.]+)"')
 
 

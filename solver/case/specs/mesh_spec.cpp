@@ -21,22 +21,10 @@ std::vector<std::string> mesh_scene_keys_given(const Case& c) {
   return given;
 }
 
-// Bevels sharper than this get their edges' rounding resolved from level 0 by default: the 10°
-// tips' volume above the strain limit converges only so, while on the 20° tips it does without
-// (docs/accuracy.md §14). The measured angles are 10° and 20°; the rule splits them evenly.
-constexpr double kFineEdgesBelowBevelDeg = 15.0;
-
-long edge_elements_per_radius(const Case& c, const NeedleTipSpec& tip) {
-  if (c.given("mesh.edge_elements_per_radius")) return c.integer("mesh.edge_elements_per_radius");
-  const bool rounded_end = tip.fillet_mm >= tip.radius_mm;  // no edges to resolve
-  return tip.kind == NeedleKind::bevel && !rounded_end && tip.bevel_deg < kFineEdgesBelowBevelDeg ? 2 : 1;
-}
-
 }  // namespace
 
 MeshSpec parse_mesh_spec(const Case& c) {
   const std::vector<double> block = c.reals("block.size_mm");  // the schema gives it three entries
-  const NeedleTipSpec needle_tip = parse_needle_tip_spec(c);
   return {.origin = c.origin(),
           .scene_kind = parse_scene_kind(c),
           .scene_mesh_file = c.path("scene.mesh_file"),
@@ -44,9 +32,9 @@ MeshSpec parse_mesh_spec(const Case& c) {
           .optimize_high_order = c.flag("mesh.optimize_high_order"),
           .seed = c.integer("mesh.seed"),
           .refinement_level = c.integer("mesh.refinement_level"),
-          .edge_elements_per_radius = edge_elements_per_radius(c, needle_tip),
+          .edge_elements_per_radius = c.maybe_integer("mesh.edge_elements_per_radius"),
           .partitions = c.integer("mesh.partitions"),
-          .needle_tip = needle_tip,
+          .needle_tip = parse_needle_tip_spec(c),
           .tissue = parse_tissue_cube_spec(c),
           .curvature_elements = c.integer("tissue.curvature_elements"),
           .needle_edge_radius_um = c.real("needle.edge_radius_um"),

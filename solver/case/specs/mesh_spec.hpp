@@ -10,6 +10,7 @@
 
 #include <array>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,7 +29,9 @@ struct MeshSpec {
   bool optimize_high_order;
   long seed;              // gmsh's random factor
   long refinement_level;  // L: every refined size times 2^-L
-  long edge_elements_per_radius;  // n: the edge size at level 0 is max(ρ, core / 4) / n (given, or by the tip)
+  // n: the edge size at level 0 is max(ρ, core / 4) / n. Not given: the mesher's default for the
+  // tip (edge_elements_per_radius in mesh/scene_mesher.hpp).
+  std::optional<long> edge_elements_per_radius;
   long partitions;        // METIS element partitions (MPI ranks), of the mesh once meshed
   // The brain-tip scene.
   NeedleTipSpec needle_tip;
