@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Test of postprocess/seed_spread.py on summaries with known values: the spread column is
-(max - min) / mean in %, a metric that is zero everywhere spreads by 0, and a run that did not
-complete stops the script with one line naming its summary.
+(max - min) / mean in %, a metric that is zero everywhere spreads by 0, a run that did not
+complete stops the script with one line naming its summary, and `--finest-of` puts a converge
+table's finest level first (its empty solver cells left out of their spread).
 
 usage: check_seed_spread.py --script postprocess/seed_spread.py --out DIR
 """
@@ -60,6 +61,34 @@ result = subprocess.run([sys.executable, str(args.script), *runs], capture_outpu
 lines = result.stderr.strip().splitlines()
 if result.returncode == 0 or len(lines) != 1 or "seed2/summary.json" not in lines[0] or "running" not in lines[0]:
     failures.append(f"an unfinished run: exit {result.returncode}, stderr {result.stderr!r}")
+
+# A converge table whose finest level (f_level2) holds 0.19 for the critical-distance strain,
+# beside runs at 0.20 and 0.21: the same 10 % as above, the coarser levels ignored.
+converge = args.out / "converge.csv"
+with converge.open("w", newline="") as out:
+    writer = csv.writer(out)
+    writer.writerow(["metric", "f_level0", "f_level1", "f_level2", "observed_order"])
+    for name, value in summary(0.19)["safety"].items():
+        for measure, entry in value.items():
+            writer.writerow([f"safety.{name}.{measure}", 9.0, 8.0, entry["value"], ""])
+    writer.writerow(["needle.max_axial_force_n", 1.0, 1.0, 5e-4, ""])
+    writer.writerow(["needle.max_torque_n_m", 1.0, 1.0, 3e-7, ""])
+table = args.out / "spread_with_finest.csv"
+subprocess.run([sys.executable, str(args.script), *write_runs("beside_converge", [0.20, 0.21]),
+                "--finest-of", str(converge), "--csv", str(table)], check=True)
+rows = {row["metric"]: row for row in csv.DictReader(table.open())}
+cd = rows["safety.log_strain.critical_distance"]
+if [cd[f"run_{k}"] for k in (1, 2, 3)] != ["0.19", "0.2", "0.21"] or abs(float(cd["spread_percent_of_mean"]) - 10.0) > 1e-9:
+    failures.append(f"--finest-of: critical-distance row {cd}")
+if rows["solver.dofs"]["run_1"] != "" or float(rows["solver.dofs"]["spread_percent_of_mean"]) != 0.0:
+    failures.append(f"--finest-of: solver row {rows['solver.dofs']}")
+not_converge = args.out / "not_converge.csv"
+not_converge.write_text("metric,run_1\nsafety.log_strain.critical_distance,0.2\n")
+result = subprocess.run([sys.executable, str(args.script), runs[0], "--finest-of", str(not_converge)],
+                        capture_output=True, text=True)
+lines = result.stderr.strip().splitlines()
+if result.returncode == 0 or len(lines) != 1 or "not_converge.csv" not in lines[0]:
+    failures.append(f"--finest-of a table without levels: exit {result.returncode}, stderr {result.stderr!r}")
 
 for failure in failures:
     print("FAIL:", failure)
