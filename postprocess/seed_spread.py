@@ -49,10 +49,11 @@ def finest_level(path):
     the solver's figures, which the table does not carry, are None."""
     try:
         with open(path, newline="") as table:
-            rows = list(csv.DictReader(table))
+            reader = csv.DictReader(table)
+            rows = list(reader)
     except OSError as error:
         sys.exit(f"seed_spread: {path}: cannot read it ({error})")
-    levels = sorted(int(key[len("f_level"):]) for key in (rows[0] if rows else {}) if re.fullmatch(r"f_level\d+", key))
+    levels = sorted(int(key[len("f_level"):]) for key in reader.fieldnames or () if re.fullmatch(r"f_level\d+", key))
     if not levels:
         sys.exit(f"seed_spread: {path}: no column f_level0, f_level1, ... (not a converge table)")
     finest = f"f_level{levels[-1]}"
