@@ -1,0 +1,180 @@
+#!/usr/bin/python3
+"""Where each study case stands against issue 24's accuracy targets: from its committed
+`needlefem converge` table and seed tables, the worst band (GCI) of each kind of mesh-objective
+metric, the verdicts, and the worst spread over mesh seeds, each against its target.
+
+The targets: every critical-distance value, percentile and needle load within a 5 % band, a
+volume above a limit within 10 %, and every one of them within 2 % over `mesh.seed` 1-4 at the
+finest level. The volume above the rate limit's seed spread is given apart, as docs/accuracy.md
+section 15 reads it, and judged like the others.
+
+MANIFEST (TOML) lists the cases, paths relative to it:
+  [[case]]
+  design = "r 0.50/20 deg/0.25"               # the row's name
+  case = "cases/table1/r0.50_a20_f0.25.toml"  # what the tables were run from (informative)
+  edge_elements_per_radius = 1                 # the grading the tables were run with
+  converge = "rounded_cavity/converge_r0.50_a20_f0.25.csv"
+  seeds = ["rounded_cavity/seed_spread_level2_r0.50_a20_f0.25.csv"]  # postprocess/seed_spread.py tables
+  seed_1_from_converge = false                 # true: the seed tables hold seeds 2-4 only, and
+                                               # seed 1 is the converge table's finest level
+  seeds_edge_elements_per_radius = 1           # only if the seeds were run with another grading
+                                               # than the converge table (shown as a miss)
+A case without seed tables (seeds = []) is shown with its seed cells empty and that as a miss.
+A missing file, a table without a metric, or a seed table whose runs are fewer than two stops
+the script with one line naming the file (and the metric).
+
+usage: /usr/bin/python3 postprocess/standing.py MANIFEST.toml [--csv OUT.csv]
+example (docs/accuracy.md section 15):
+  /usr/bin/python3 postprocess/standing.py docs/study/standing.toml --csv docs/study/standing.csv
+"""
+import argparse
+import csv
+import pathlib
+import re
+import sys
+import tomllib
+
+from seed_spread import spread_percent
+
+QUANTITIES = ("log_strain", "strain_rate_per_s", "stress_pa")
+CD = tuple(f"safety.{q}.critical_distance" for q in QUANTITIES)
+PERCENTILES = tuple(f"safety.{q}.percentile" for q in QUANTITIES)
+VOLUMES = tuple(f"safety.{q}.volume_above_limit_mm3" for q in QUANTITIES)
+LOADS = ("needle.max_axial_force_n", "needle.max_torque_n_m")
+RATE_VOLUME = "safety.strain_rate_per_s.volume_above_limit_mm3"
+BAND_TARGET_PERCENT = {**{m: 5.0 for m in CD + PERCENTILES + LOADS}, **{m: 10.0 for m in VOLUMES}}
+SEED_METRICS = CD + PERCENTILES + VOLUMES + LOADS
+SEED_TARGET_PERCENT = 2.0
+
+
+def fail(path, reason):
+    sys.exit(f"standing: {path}: {reason}")
+
+
+def read_table(path):
+    try:
+        with open(path, newline="") as table:
+            reader = csv.DictReader(table)
+            return reader.fieldnames or [], {row["metric"]: row for row in reader}
+    except OSError as error:
+        fail(path, f"cannot read it ({error})")
+
+
+def number(path, row, column, metric):
+    try:
+        return float(row[column])
+    except (KeyError, TypeError, ValueError):
+        fail(path, f"metric {metric}: no number in {column}")
+
+
+def converge_bands(path):
+    """{metric: band in % of the finest value}, {CD metric: verdict}, the finest level's values."""
+    fields, rows = read_table(path)
+    levels = sorted(int(f[len("f_level"):]) for f in fields if re.fullmatch(r"f_level\d+", f))
+    if not levels:
+        fail(path, "no column f_level0, f_level1, ... (not a converge table)")
+    finest = f"f_level{levels[-1]}"
+    bands, verdicts, values = {}, {}, {}
+    for metric in BAND_TARGET_PERCENT:
+        if metric not in rows:
+            fail(path, f"metric {metric}: not in the table")
+        bands[metric] = 100.0 * number(path, rows[metric], "gci_fine", metric)
+        values[metric] = number(path, rows[metric], finest, metric)
+    for metric in CD:
+        verdicts[metric] = rows[metric].get("verdict") or ""
+    return bands, verdicts, values
+
+
+def seed_values(paths, seed_1):
+    """{metric: [value per seed]} over the seed tables' runs (after seed_1's values if given)."""
+    values = {m: ([seed_1[m]] if seed_1 else []) for m in SEED_METRICS}
+    for path in paths:
+        fields, rows = read_table(path)
+        runs = [f for f in fields if re.fullmatch(r"run_\d+", f)]
+        if not runs:
+            fail(path, "no column run_1, run_2, ... (not a seed_spread.py table)")
+        for metric in SEED_METRICS:
+            if metric not in rows:
+                fail(path, f"metric {metric}: not in the table")
+            values[metric] += [number(path, rows[metric], run, metric) for run in runs]
+    return values
+
+
+def worst(percents, metrics):
+    metric = max(metrics, key=lambda m: percents[m])
+    return percents[metric], metric
+
+
+def standing(case, root):
+    converge = root / case["converge"]
+    bands, verdicts, finest = converge_bands(converge)
+    seed_paths = [root / p for p in case.get("seeds", [])]
+    misses = [f"{m} band {bands[m]:.3g} %" for m in BAND_TARGET_PERCENT if bands[m] > BAND_TARGET_PERCENT[m]]
+    misses += [f"{m} undecided" for m in CD if verdicts[m] == "undecided"]
+    row = {
+        "design": case["design"], "case": case.get("case", ""),
+        "edge_elements_per_radius": case.get("edge_elements_per_radius", ""),
+        "converge_table": case["converge"], "seed_tables": " ".join(case.get("seeds", [])),
+        "cd_band_worst_percent": "%.3g" % worst(bands, CD)[0], "cd_band_worst_metric": worst(bands, CD)[1],
+        "percentile_band_worst_percent": "%.3g" % worst(bands, PERCENTILES)[0],
+        **{f"{m.split('.')[1]}_volume_band_percent": "%.3g" % bands[m] if finest[m] > 0 else "none above"
+           for m in VOLUMES},
+        "force_band_percent": "%.3g" % bands[LOADS[0]], "torque_band_percent": "%.3g" % bands[LOADS[1]],
+        "verdicts": " ".join(f"{m.split('.')[1]}:{verdicts[m]}" for m in CD),
+        "seeds": "", "seed_spread_worst_percent": "", "seed_spread_worst_metric": "",
+        "strain_rate_volume_seed_spread_percent": "",
+    }
+    if seed_paths:
+        values = seed_values(seed_paths, finest if case.get("seed_1_from_converge") else None)
+        count = len(values[CD[0]])
+        if count < 2:
+            fail(seed_paths[0], "fewer than two seeds")
+        spreads = {m: spread_percent(v) for m, v in values.items()}
+        others = tuple(m for m in SEED_METRICS if m != RATE_VOLUME)
+        row["seeds"] = count
+        row["seed_spread_worst_percent"], row["seed_spread_worst_metric"] = worst(spreads, others)
+        row["seed_spread_worst_percent"] = "%.3g" % row["seed_spread_worst_percent"]
+        row["strain_rate_volume_seed_spread_percent"] = "%.3g" % spreads[RATE_VOLUME] if any(values[RATE_VOLUME]) \
+            else "none above"
+        misses += [f"{m} seed spread {spreads[m]:.3g} %" for m in SEED_METRICS if spreads[m] > SEED_TARGET_PERCENT]
+        if count < 4:
+            misses.append(f"{count} seeds, not 4")
+        grading = case.get("seeds_edge_elements_per_radius", case.get("edge_elements_per_radius"))
+        if grading != case.get("edge_elements_per_radius"):
+            misses.append(f"seeds run with edge_elements_per_radius {grading}, "
+                          f"the converge table with {case.get('edge_elements_per_radius')}")
+    else:
+        misses.append("no seed table")
+    row["misses"] = "; ".join(misses)
+    return row
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("manifest", type=pathlib.Path)
+    parser.add_argument("--csv", type=pathlib.Path)
+    args = parser.parse_args()
+    try:
+        manifest = tomllib.loads(args.manifest.read_text())
+    except (OSError, tomllib.TOMLDecodeError) as error:
+        fail(args.manifest, f"cannot read it ({error})")
+    cases = manifest.get("case")
+    if not isinstance(cases, list) or not cases:
+        fail(args.manifest, "key 'case': required, a list of [[case]] tables")
+    for k, case in enumerate(cases):
+        for key in ("design", "converge"):
+            if key not in case:
+                fail(args.manifest, f"key 'case[{k}].{key}': required")
+    rows = [standing(case, args.manifest.parent) for case in cases]
+    out = open(args.csv, "w", newline="") if args.csv else sys.stdout
+    writer = csv.DictWriter(out, fieldnames=list(rows[0]))
+    writer.writeheader()
+    writer.writerows(rows)
+    if args.csv:
+        out.close()
+        for row in rows:
+            print(f"{row['design']}: {row['misses'] or 'meets every target'}")
+
+
+if __name__ == "__main__":
+    main()
