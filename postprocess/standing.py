@@ -20,6 +20,13 @@ MANIFEST (TOML) lists the cases, paths relative to it:
   seeds_edge_elements_per_radius = 1           # only if the seeds were run with another grading
                                                # than the converge table (shown as a miss)
 A case without seed tables (seeds = []) is shown with its seed cells empty and that as a miss.
+
+A sequence whose differences do not shrink over the levels ("divergent" in the converge table)
+has no order, and the converge table gives it the band of an oscillating one, 3 x half its
+spread (Stern et al. 2001). That band holds where the differences are the meshes' scatter, not
+where they are a trend. The seeds measure the scatter: a divergent metric whose last difference
+(finest level against the one below) is larger than its range over the seeds is a miss, "not
+converging"; without seeds every divergent metric is.
 A missing file, a table without a metric, or a seed table whose runs are fewer than two stops
 the script with one line naming the file (and the metric).
 
@@ -68,21 +75,26 @@ def number(path, row, column, metric):
 
 
 def converge_bands(path):
-    """{metric: band in % of the finest value}, {CD metric: verdict}, the finest level's values."""
+    """{metric: band in % of the finest value}, {CD metric: verdict}, the finest level's values, and
+    {divergent metric: |its finest value - the level below's|}."""
     fields, rows = read_table(path)
     levels = sorted(int(f[len("f_level"):]) for f in fields if re.fullmatch(r"f_level\d+", f))
     if not levels:
         fail(path, "no column f_level0, f_level1, ... (not a converge table)")
-    finest = f"f_level{levels[-1]}"
-    bands, verdicts, values = {}, {}, {}
+    if len(levels) < 2:
+        fail(path, "fewer than two levels")
+    finest, below = (f"f_level{level}" for level in levels[:-3:-1])
+    bands, verdicts, values, steps = {}, {}, {}, {}
     for metric in BAND_TARGET_PERCENT:
         if metric not in rows:
             fail(path, f"metric {metric}: not in the table")
         bands[metric] = 100.0 * number(path, rows[metric], "gci_fine", metric)
         values[metric] = number(path, rows[metric], finest, metric)
+        if rows[metric].get("observed_order") == "divergent":
+            steps[metric] = abs(values[metric] - number(path, rows[metric], below, metric))
     for metric in CD:
         verdicts[metric] = rows[metric].get("verdict") or ""
-    return bands, verdicts, values
+    return bands, verdicts, values, steps
 
 
 def seed_values(paths, seed_1):
@@ -107,7 +119,7 @@ def worst(percents, metrics):
 
 def standing(case, root):
     converge = root / case["converge"]
-    bands, verdicts, finest = converge_bands(converge)
+    bands, verdicts, finest, steps = converge_bands(converge)
     seed_paths = [root / p for p in case.get("seeds", [])]
     misses = [f"{m} band {bands[m]:.3g} %" for m in BAND_TARGET_PERCENT if bands[m] > BAND_TARGET_PERCENT[m]]
     misses += [f"{m} undecided" for m in CD if verdicts[m] == "undecided"]
@@ -137,6 +149,11 @@ def standing(case, root):
         row["strain_rate_volume_seed_spread_percent"] = "%.3g" % spreads[RATE_VOLUME] if any(values[RATE_VOLUME]) \
             else "none above"
         misses += [f"{m} seed spread {spreads[m]:.3g} %" for m in SEED_METRICS if spreads[m] > SEED_TARGET_PERCENT]
+        for metric, step in steps.items():
+            scatter = max(values[metric]) - min(values[metric])
+            if step > scatter:
+                misses.append(f"{metric} not converging: its last level step {100 * step / abs(finest[metric]):.3g} % "
+                              f"exceeds its seed range {100 * scatter / abs(finest[metric]):.3g} %")
         if count < 4:
             misses.append(f"{count} seeds, not 4")
         grading = case.get("seeds_edge_elements_per_radius", case.get("edge_elements_per_radius"))
@@ -145,6 +162,7 @@ def standing(case, root):
                           f"the converge table with {case.get('edge_elements_per_radius')}")
     else:
         misses.append("no seed table")
+        misses += [f"{metric} not converging (no seed range to judge its last level step by)" for metric in steps]
     row["misses"] = "; ".join(misses)
     return row
 

@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Test of postprocess/standing.py on converge and seed tables with known bands and spreads: a
 band is judged against 5 % (a volume above a limit against 10 %), a seed spread against 2 %, an
-undecided verdict is a miss, `seed_1_from_converge` adds the converge table's finest level as
+undecided verdict is a miss, a divergent sequence is one where its last level step exceeds its
+seeds' range (or there are no seeds), `seed_1_from_converge` adds the converge table's finest level as
 seed 1, a case without seed tables says so, and a table without a metric stops the script with
 one line naming the file and the metric.
 
@@ -27,15 +28,18 @@ METRICS = [f"safety.{q}.{m}" for q in QUANTITIES
 METRICS += ["needle.max_axial_force_n", "needle.max_torque_n_m"]
 
 
-def converge_table(name, gci=None, verdict=None, drop=None):
-    """Every metric 1.0 on each level with a band of 1 % but where `gci` says otherwise."""
+def converge_table(name, gci=None, verdict=None, drop=None, divergent=None):
+    """Every metric 1.0 on each level, order 2, with a band of 1 % but where `gci` says otherwise;
+    `divergent` gives a metric's three levels, whose order is then "divergent"."""
     path = args.out / name
     with path.open("w", newline="") as table:
         writer = csv.writer(table)
-        writer.writerow(["metric", "f_level0", "f_level1", "f_level2", "gci_fine", "verdict", "note"])
+        writer.writerow(["metric", "f_level0", "f_level1", "f_level2", "observed_order", "gci_fine", "verdict", "note"])
         for metric in METRICS:
             if metric != drop:
-                writer.writerow([metric, 1.0, 1.0, 1.0, (gci or {}).get(metric, 0.01),
+                levels = (divergent or {}).get(metric)
+                writer.writerow([metric, *(levels or (1.0, 1.0, 1.0)), "divergent" if levels else 2,
+                                 (gci or {}).get(metric, 0.01),
                                  (verdict or {}).get(metric, "pass" if "critical_distance" in metric else ""),
                                  "a note, with a comma"])
     return name
@@ -72,6 +76,7 @@ CD_STRAIN = "safety.log_strain.critical_distance"
 RATE_VOLUME = "safety.strain_rate_per_s.volume_above_limit_mm3"
 STRAIN_VOLUME = "safety.log_strain.volume_above_limit_mm3"
 TORQUE = "needle.max_torque_n_m"
+FORCE = "needle.max_axial_force_n"
 result, rows = run([
     {"design": "meets", "edge_elements_per_radius": 2, "converge": converge_table("c_meets.csv"),
      "seeds": [seed_table("s_meets.csv", 4)]},
@@ -84,7 +89,14 @@ result, rows = run([
     # critical-distance strain, 0.95 / 1.05 / 1.0 in the seed table: (1.05 - 0.95) / 1.0 = 10 %.
     {"design": "seed 1 from converge", "edge_elements_per_radius": 2, "converge": converge_table("c_s1.csv"),
      "seeds": [seed_table("s_s1.csv", 3, values={CD_STRAIN: [0.95, 1.05, 1.0]})], "seed_1_from_converge": True},
-    {"design": "no seeds", "edge_elements_per_radius": 1, "converge": converge_table("c_none.csv"), "seeds": []},
+    # Divergent: the force steps 0.2 % to the finest level, the seeds range over 0.5 % (the scatter:
+    # not a miss); the torque steps 0.4 %, its seeds range over 0.1 % (a trend: a miss).
+    {"design": "divergent", "edge_elements_per_radius": 2,
+     "converge": converge_table("c_divergent.csv", divergent={FORCE: (0.998, 0.999, 1.001), TORQUE: (0.994, 0.996, 1.0)}),
+     "seeds": [seed_table("s_divergent.csv", 3, values={FORCE: [0.998, 1.003, 1.0], TORQUE: [0.9995, 1.0005, 1.0]})],
+     "seed_1_from_converge": True},
+    {"design": "no seeds", "edge_elements_per_radius": 1,
+     "converge": converge_table("c_none.csv", divergent={TORQUE: (0.994, 0.996, 1.0)}), "seeds": []},
     {"design": "other grading", "edge_elements_per_radius": 2, "converge": converge_table("c_grading.csv"),
      "seeds": [seed_table("s_grading.csv", 4)], "seeds_edge_elements_per_radius": 1},
 ])
@@ -99,7 +111,10 @@ else:
         "seed 1 from converge": ("safety.log_strain.critical_distance seed spread 10 %",
                                  {"seeds": "4", "seed_spread_worst_percent": "10",
                                   "seed_spread_worst_metric": CD_STRAIN}),
-        "no seeds": ("no seed table", {"seeds": ""}),
+        "divergent": ("needle.max_torque_n_m not converging: its last level step 0.4 % exceeds its seed range 0.1 %",
+                      {"seeds": "4"}),
+        "no seeds": ("no seed table; needle.max_torque_n_m not converging (no seed range to judge its last level step by)",
+                     {"seeds": ""}),
         "other grading": ("seeds run with edge_elements_per_radius 1, the converge table with 2", {}),
     }
     for design, (misses, cells) in expect.items():
