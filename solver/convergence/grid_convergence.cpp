@@ -44,7 +44,8 @@ Estimate estimate(double coarse, double medium, double fine, const Settings& s) 
                 fmt::format("oscillatory (R = {:.3g}): band {} x half the spread", e21 / e32, s.oscillatory_safety_factor));
   } else if (std::abs(e21) >= std::abs(e32)) {
     spread_band(e, s, Behaviour::divergent,
-                fmt::format("not converging (|f2 - f1| >= |f3 - f2|): band {} x half the spread",
+                fmt::format("not converging (|f2 - f1| >= |f3 - f2|): band {} x half the spread, which bounds "
+                            "the error only where the steps are the meshes' scatter (their spread over mesh.seed)",
                             s.oscillatory_safety_factor));
   } else {
     e.behaviour = Behaviour::monotone;

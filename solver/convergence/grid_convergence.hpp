@@ -24,6 +24,10 @@
 //               convergence by half the spread of the solutions, and Roache's factor 3 is the
 //               one he gives where the order has not been verified.
 //   divergent   |e21| >= |e32| (p <= 0): the differences do not shrink; treated as oscillatory.
+//               That band bounds the error only where the steps are the meshes' scatter, which
+//               the same case over mesh.seed measures; where a step exceeds that spread it is a
+//               trend, and three levels give it no band (Stern et al. 2001 give divergence no estimate).
+//               postprocess/standing.py makes that check from the converge and seed tables.
 //   monotone    0 <= R < 1. The observed order is reported as measured. Above the formal
 //               order 2 (that of the strains and stresses of quadratic elements, the
 //               displacement gradients) f_ext and GCI use 2: a larger p would claim more than
