@@ -30,7 +30,9 @@ converging"; without seeds every divergent metric is.
 A missing file, a table without a metric, or a seed table whose runs are fewer than two stops
 the script with one line naming the file (and the metric).
 
-usage: /usr/bin/python3 postprocess/standing.py MANIFEST.toml [--csv OUT.csv]
+usage: /usr/bin/python3 postprocess/standing.py MANIFEST.toml [--csv OUT.csv] [--markdown]
+(--markdown prints the table as docs/accuracy.md section 15 gives it, bands and spreads above
+their targets in bold)
 example (docs/accuracy.md section 15):
   /usr/bin/python3 postprocess/standing.py docs/study/standing.toml --csv docs/study/standing.csv
 """
@@ -112,6 +114,11 @@ def seed_values(paths, seed_1):
     return values
 
 
+def percent_text(value):
+    """A percentage to three significant digits, a large one whole: 1318, not 1.32e+03."""
+    return f"{value:.3g}" if abs(value) < 1000 else f"{value:.0f}"
+
+
 def worst(percents, metrics):
     metric = max(metrics, key=lambda m: percents[m])
     return percents[metric], metric
@@ -121,17 +128,18 @@ def standing(case, root):
     converge = root / case["converge"]
     bands, verdicts, finest, steps = converge_bands(converge)
     seed_paths = [root / p for p in case.get("seeds", [])]
+    trends = []
     misses = [f"{m} band {bands[m]:.3g} %" for m in BAND_TARGET_PERCENT if bands[m] > BAND_TARGET_PERCENT[m]]
     misses += [f"{m} undecided" for m in CD if verdicts[m] == "undecided"]
     row = {
         "design": case["design"], "case": case.get("case", ""),
         "edge_elements_per_radius": case.get("edge_elements_per_radius", ""),
         "converge_table": case["converge"], "seed_tables": " ".join(case.get("seeds", [])),
-        "cd_band_worst_percent": "%.3g" % worst(bands, CD)[0], "cd_band_worst_metric": worst(bands, CD)[1],
-        "percentile_band_worst_percent": "%.3g" % worst(bands, PERCENTILES)[0],
-        **{f"{m.split('.')[1]}_volume_band_percent": "%.3g" % bands[m] if finest[m] > 0 else "none above"
+        "cd_band_worst_percent": percent_text(worst(bands, CD)[0]), "cd_band_worst_metric": worst(bands, CD)[1],
+        "percentile_band_worst_percent": percent_text(worst(bands, PERCENTILES)[0]),
+        **{f"{m.split('.')[1]}_volume_band_percent": percent_text(bands[m]) if finest[m] > 0 else "none above"
            for m in VOLUMES},
-        "force_band_percent": "%.3g" % bands[LOADS[0]], "torque_band_percent": "%.3g" % bands[LOADS[1]],
+        "force_band_percent": percent_text(bands[LOADS[0]]), "torque_band_percent": percent_text(bands[LOADS[1]]),
         "verdicts": " ".join(f"{m.split('.')[1]}:{verdicts[m]}" for m in CD),
         "seeds": "", "seed_spread_worst_percent": "", "seed_spread_worst_metric": "",
         "strain_rate_volume_seed_spread_percent": "",
@@ -145,13 +153,14 @@ def standing(case, root):
         others = tuple(m for m in SEED_METRICS if m != RATE_VOLUME)
         row["seeds"] = count
         row["seed_spread_worst_percent"], row["seed_spread_worst_metric"] = worst(spreads, others)
-        row["seed_spread_worst_percent"] = "%.3g" % row["seed_spread_worst_percent"]
-        row["strain_rate_volume_seed_spread_percent"] = "%.3g" % spreads[RATE_VOLUME] if any(values[RATE_VOLUME]) \
+        row["seed_spread_worst_percent"] = percent_text(row["seed_spread_worst_percent"])
+        row["strain_rate_volume_seed_spread_percent"] = percent_text(spreads[RATE_VOLUME]) if any(values[RATE_VOLUME]) \
             else "none above"
         misses += [f"{m} seed spread {spreads[m]:.3g} %" for m in SEED_METRICS if spreads[m] > SEED_TARGET_PERCENT]
         for metric, step in steps.items():
             scatter = max(values[metric]) - min(values[metric])
             if step > scatter:
+                trends.append(metric)
                 misses.append(f"{metric} not converging: its last level step {100 * step / abs(finest[metric]):.3g} % "
                               f"exceeds its seed range {100 * scatter / abs(finest[metric]):.3g} %")
         if count < 4:
@@ -162,15 +171,58 @@ def standing(case, root):
                           f"the converge table with {case.get('edge_elements_per_radius')}")
     else:
         misses.append("no seed table")
+        trends += list(steps)
         misses += [f"{metric} not converging (no seed range to judge its last level step by)" for metric in steps]
+    row["not_converging"] = " ".join(trends)
     row["misses"] = "; ".join(misses)
     return row
+
+
+SHORT_NAMES = {**dict(zip(CD, ("CD log strain", "CD strain rate", "CD von Mises"))),
+               **dict(zip(PERCENTILES, ("99th percentile log strain", "99th percentile strain rate",
+                                        "99th percentile von Mises"))),
+               **dict(zip(VOLUMES, ("volume > 0.19", "volume > 10 1/s", "volume > 120 kPa"))),
+               LOADS[0]: "force", LOADS[1]: "torque"}
+
+
+def percent_cell(text, target):
+    """A band or spread as docs/accuracy.md writes it, in bold above its target."""
+    try:
+        value = float(text)
+    except ValueError:
+        return text
+    cell = f"{text} %"
+    return f"**{cell}**" if value > target else cell
+
+
+def markdown(rows):
+    """docs/accuracy.md section 15's table."""
+    lines = ["| design (n) | CD bands, worst | 99th percentiles, worst | volume > 0.19 | volume > 10 1/s | force / torque "
+             "| seeds at the finest level, every metric but the volume > 10 1/s | volume > 10 1/s over seeds "
+             "| not converging beyond the seeds' scatter |", "|" + "---|" * 9]
+    for row in rows:
+        seeds = f"{row['seeds']} seeds: ≤ {percent_cell(row['seed_spread_worst_percent'], SEED_TARGET_PERCENT)}" \
+            if row["seeds"] else "**no seed table**"
+        if "seeds run with edge_elements_per_radius" in row["misses"]:
+            seeds += " (**another grading**)"
+        lines.append("| " + " | ".join([
+            f"{row['design']} ({row['edge_elements_per_radius']})",
+            percent_cell(row["cd_band_worst_percent"], 5.0),
+            percent_cell(row["percentile_band_worst_percent"], 5.0),
+            percent_cell(row["log_strain_volume_band_percent"], 10.0),
+            percent_cell(row["strain_rate_per_s_volume_band_percent"], 10.0),
+            f"{percent_cell(row['force_band_percent'], 5.0)} / {percent_cell(row['torque_band_percent'], 5.0)}",
+            seeds,
+            percent_cell(row["strain_rate_volume_seed_spread_percent"], SEED_TARGET_PERCENT) if row["seeds"] else "",
+            ", ".join(SHORT_NAMES[m] for m in row["not_converging"].split()) or "none"]) + " |")
+    return "\n".join(lines)
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("manifest", type=pathlib.Path)
     parser.add_argument("--csv", type=pathlib.Path)
+    parser.add_argument("--markdown", action="store_true", help="print docs/accuracy.md section 15's table")
     args = parser.parse_args()
     try:
         manifest = tomllib.loads(args.manifest.read_text())
@@ -184,6 +236,8 @@ def main():
             if key not in case:
                 fail(args.manifest, f"key 'case[{k}].{key}': required")
     rows = [standing(case, args.manifest.parent) for case in cases]
+    if args.markdown:
+        print(markdown(rows))
     out = open(args.csv, "w", newline="") if args.csv else sys.stdout
     writer = csv.DictWriter(out, fieldnames=list(rows[0]))
     writer.writeheader()
