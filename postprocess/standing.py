@@ -33,8 +33,8 @@ the script with one line naming the file (and the metric).
 usage: /usr/bin/python3 postprocess/standing.py MANIFEST.toml [--csv OUT.csv] [--markdown]
 (--markdown prints the table as docs/accuracy.md section 15 gives it, bands and spreads above
 their targets in bold)
-example (docs/accuracy.md section 15):
-  /usr/bin/python3 postprocess/standing.py docs/study/standing.toml --csv docs/study/standing.csv
+example (docs/accuracy.md section 15's table, and every miss named in a CSV):
+  /usr/bin/python3 postprocess/standing.py docs/study/standing.toml --markdown --csv standing.csv
 """
 import argparse
 import csv
