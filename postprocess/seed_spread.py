@@ -44,20 +44,28 @@ def _lookup(summary, name):
     return node["value"] if isinstance(node, dict) else node
 
 
-def finest_level(path):
-    """(name, value) of every metric of metrics()'s list in a converge table's finest level;
-    the solver's figures, which the table does not carry, are None."""
+def read_converge_table(path, program):
+    """The level columns of a `needlefem converge` table, coarsest first (f_level0, f_level1, ...),
+    and its rows by metric; a table that cannot be read or has no level column stops `program`
+    with one line naming it."""
     try:
         with open(path, newline="") as table:
             reader = csv.DictReader(table)
-            rows = list(reader)
+            rows = {row["metric"]: row for row in reader}
     except OSError as error:
-        sys.exit(f"seed_spread: {path}: cannot read it ({error})")
+        sys.exit(f"{program}: {path}: cannot read it ({error})")
     levels = sorted(int(key[len("f_level"):]) for key in reader.fieldnames or () if re.fullmatch(r"f_level\d+", key))
     if not levels:
-        sys.exit(f"seed_spread: {path}: no column f_level0, f_level1, ... (not a converge table)")
-    finest = f"f_level{levels[-1]}"
-    values = {row["metric"]: row[finest] for row in rows}
+        sys.exit(f"{program}: {path}: no column f_level0, f_level1, ... (not a converge table)")
+    return [f"f_level{level}" for level in levels], rows
+
+
+def finest_level(path):
+    """(name, value) of every metric of metrics()'s list in a converge table's finest level;
+    the solver's figures, which the table does not carry, are None."""
+    levels, rows = read_converge_table(path, "seed_spread")
+    finest = levels[-1]
+    values = {metric: row[finest] for metric, row in rows.items()}
     column = []
     for name in METRIC_NAMES:
         if name.startswith("solver."):

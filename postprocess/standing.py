@@ -43,9 +43,8 @@ import re
 import sys
 import tomllib
 
-from seed_spread import spread_percent
+from seed_spread import QUANTITIES, read_converge_table, spread_percent
 
-QUANTITIES = ("log_strain", "strain_rate_per_s", "stress_pa")
 CD = tuple(f"safety.{q}.critical_distance" for q in QUANTITIES)
 PERCENTILES = tuple(f"safety.{q}.percentile" for q in QUANTITIES)
 VOLUMES = tuple(f"safety.{q}.volume_above_limit_mm3" for q in QUANTITIES)
@@ -79,13 +78,10 @@ def number(path, row, column, metric):
 def converge_bands(path):
     """{metric: band in % of the finest value}, {CD metric: verdict}, the finest level's values, and
     {divergent metric: |its finest value - the level below's|}."""
-    fields, rows = read_table(path)
-    levels = sorted(int(f[len("f_level"):]) for f in fields if re.fullmatch(r"f_level\d+", f))
-    if not levels:
-        fail(path, "no column f_level0, f_level1, ... (not a converge table)")
+    levels, rows = read_converge_table(path, "standing")
     if len(levels) < 2:
         fail(path, "fewer than two levels")
-    finest, below = (f"f_level{level}" for level in levels[:-3:-1])
+    below, finest = levels[-2:]
     bands, verdicts, values, steps = {}, {}, {}, {}
     for metric in BAND_TARGET_PERCENT:
         if metric not in rows:
@@ -131,11 +127,12 @@ def standing(case, root):
     trends = []
     misses = [f"{m} band {bands[m]:.3g} %" for m in BAND_TARGET_PERCENT if bands[m] > BAND_TARGET_PERCENT[m]]
     misses += [f"{m} undecided" for m in CD if verdicts[m] == "undecided"]
+    cd_band, cd_metric = worst(bands, CD)
     row = {
         "design": case["design"], "case": case.get("case", ""),
         "edge_elements_per_radius": case.get("edge_elements_per_radius", ""),
         "converge_table": case["converge"], "seed_tables": " ".join(case.get("seeds", [])),
-        "cd_band_worst_percent": percent_text(worst(bands, CD)[0]), "cd_band_worst_metric": worst(bands, CD)[1],
+        "cd_band_worst_percent": percent_text(cd_band), "cd_band_worst_metric": cd_metric,
         "percentile_band_worst_percent": percent_text(worst(bands, PERCENTILES)[0]),
         **{f"{m.split('.')[1]}_volume_band_percent": percent_text(bands[m]) if finest[m] > 0 else "none above"
            for m in VOLUMES},
@@ -152,8 +149,8 @@ def standing(case, root):
         spreads = {m: spread_percent(v) for m, v in values.items()}
         others = tuple(m for m in SEED_METRICS if m != RATE_VOLUME)
         row["seeds"] = count
-        row["seed_spread_worst_percent"], row["seed_spread_worst_metric"] = worst(spreads, others)
-        row["seed_spread_worst_percent"] = percent_text(row["seed_spread_worst_percent"])
+        seed_spread, row["seed_spread_worst_metric"] = worst(spreads, others)
+        row["seed_spread_worst_percent"] = percent_text(seed_spread)
         row["strain_rate_volume_seed_spread_percent"] = percent_text(spreads[RATE_VOLUME]) if any(values[RATE_VOLUME]) \
             else "none above"
         misses += [f"{m} seed spread {spreads[m]:.3g} %" for m in SEED_METRICS if spreads[m] > SEED_TARGET_PERCENT]
