@@ -19,6 +19,10 @@ MANIFEST (TOML) lists the cases, paths relative to it:
                                                # seed 1 is the converge table's finest level
   seeds_edge_elements_per_radius = 1           # only if the seeds were run with another grading
                                                # than the converge table (shown as a miss)
+  one_level_up = "edge_grading/converge_..._levels_0-3.csv"  # optional: a converge table of four or
+                                               # more levels, whose finest_in_coarser_band column
+                                               # says whether each band of the three levels below
+                                               # its finest held the finest value
 A case without seed tables (seeds = []) is shown with its seed cells empty and that as a miss.
 
 A sequence whose differences do not shrink over the levels ("divergent" in the converge table)
@@ -27,6 +31,10 @@ spread (Stern et al. 2001). That band holds where the differences are the meshes
 where they are a trend. The seeds measure the scatter: a divergent metric whose last difference
 (finest level against the one below) is larger than its range over the seeds is a miss, "not
 converging"; without seeds every divergent metric is.
+One level up: each band of levels 0-2 claims to hold the converged value, which a fourth level
+tests directly (`needlefem converge --levels 4`). Of the metrics above, those whose band missed
+the finest value of the `one_level_up` table are misses; metrics whose finest value is zero on
+every level (no volume above the limit) are not counted.
 A missing file, a table without a metric, or a seed table whose runs are fewer than two stops
 the script with one line naming the file (and the metric).
 
@@ -95,6 +103,28 @@ def converge_bands(path):
     return bands, verdicts, values, steps
 
 
+def one_level_up(path):
+    """(held, checked, [metrics whose band missed]) over BAND_TARGET_PERCENT's metrics of a converge
+    table with a fourth level: its finest_in_coarser_band column, yes or no per metric."""
+    levels, rows = read_converge_table(path, "standing")
+    if len(levels) < 4:
+        fail(path, f"{len(levels)} levels: the band one level up needs four or more")
+    held, missed = 0, []
+    for metric in BAND_TARGET_PERCENT:
+        if metric not in rows:
+            fail(path, f"metric {metric}: not in the table")
+        if all(number(path, rows[metric], level, metric) == 0 for level in levels):
+            continue
+        answer = rows[metric].get("finest_in_coarser_band") or ""
+        if answer not in ("yes", "no"):
+            fail(path, f"metric {metric}: finest_in_coarser_band is '{answer}', not yes or no")
+        if answer == "yes":
+            held += 1
+        else:
+            missed.append(metric)
+    return held, held + len(missed), missed
+
+
 def seed_values(paths, seed_1):
     """{metric: [value per seed]} over the seed tables' runs (after seed_1's values if given)."""
     values = {m: ([seed_1[m]] if seed_1 else []) for m in SEED_METRICS}
@@ -140,7 +170,13 @@ def standing(case, root):
         "verdicts": " ".join(f"{m.split('.')[1]}:{verdicts[m]}" for m in CD),
         "seeds": "", "seed_spread_worst_percent": "", "seed_spread_worst_metric": "",
         "strain_rate_volume_seed_spread_percent": "",
+        "one_level_up_table": case.get("one_level_up", ""), "one_level_up_held": "", "one_level_up_missed": "",
     }
+    if "one_level_up" in case:
+        held, checked, missed = one_level_up(root / case["one_level_up"])
+        row["one_level_up_held"] = f"{held} of {checked}"
+        row["one_level_up_missed"] = " ".join(missed)
+        misses += [f"{m} band of the three levels below missed the fourth" for m in missed]
     if seed_paths:
         values = seed_values(seed_paths, finest if case.get("seed_1_from_converge") else None)
         count = len(values[CD[0]])
@@ -192,11 +228,18 @@ def percent_cell(text, target):
     return f"**{cell}**" if value > target else cell
 
 
+def one_level_up_cell(row):
+    if not row["one_level_up_held"]:
+        return "no fourth level"
+    missed = ", ".join(SHORT_NAMES[m] for m in row["one_level_up_missed"].split())
+    return row["one_level_up_held"] + (f"; **missed: {missed}**" if missed else "")
+
+
 def markdown(rows):
     """docs/accuracy.md section 15's table."""
     lines = ["| design (n) | CD bands, worst | 99th percentiles, worst | volume > 0.19 | volume > 10 1/s | force / torque "
              "| seeds at the finest level, every metric but the volume > 10 1/s | volume > 10 1/s over seeds "
-             "| not converging beyond the seeds' scatter |", "|" + "---|" * 9]
+             "| not converging beyond the seeds' scatter | bands held one level up |", "|" + "---|" * 10]
     for row in rows:
         seeds = f"{row['seeds']} seeds: ≤ {percent_cell(row['seed_spread_worst_percent'], SEED_TARGET_PERCENT)}" \
             if row["seeds"] else "**no seed table**"
@@ -211,7 +254,8 @@ def markdown(rows):
             f"{percent_cell(row['force_band_percent'], 5.0)} / {percent_cell(row['torque_band_percent'], 5.0)}",
             seeds,
             percent_cell(row["strain_rate_volume_seed_spread_percent"], SEED_TARGET_PERCENT) if row["seeds"] else "",
-            ", ".join(SHORT_NAMES[m] for m in row["not_converging"].split()) or "none"]) + " |")
+            ", ".join(SHORT_NAMES[m] for m in row["not_converging"].split()) or "none",
+            one_level_up_cell(row)]) + " |")
     return "\n".join(lines)
 
 

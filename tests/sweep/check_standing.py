@@ -2,7 +2,8 @@
 """Test of postprocess/standing.py on converge and seed tables with known bands and spreads: a
 band is judged against 5 % (a volume above a limit against 10 %), a seed spread against 2 %, an
 undecided verdict is a miss, a divergent sequence is one where its last level step exceeds its
-seeds' range (or there are no seeds), the markdown table bolds what misses, `seed_1_from_converge` adds the converge table's finest level as
+seeds' range (or there are no seeds), a band that missed one level up is a miss (a metric zero on
+every level not counted) and a table of three levels is refused for it, the markdown table bolds what misses, `seed_1_from_converge` adds the converge table's finest level as
 seed 1, a case without seed tables says so, and a table without a metric stops the script with
 one line naming the file and the metric.
 
@@ -28,20 +29,28 @@ METRICS = [f"safety.{q}.{m}" for q in QUANTITIES
 METRICS += ["needle.max_axial_force_n", "needle.max_torque_n_m"]
 
 
-def converge_table(name, gci=None, verdict=None, drop=None, divergent=None):
+def converge_table(name, gci=None, verdict=None, drop=None, divergent=None, missed_one_level_up=None, zero=()):
     """Every metric 1.0 on each level, order 2, with a band of 1 % but where `gci` says otherwise;
-    `divergent` gives a metric's three levels, whose order is then "divergent"."""
+    `divergent` gives a metric's three levels, whose order is then "divergent". With
+    `missed_one_level_up` (a list of metrics) the table has a fourth level and the check one
+    level up, "no" for those metrics and "yes" for the others; the metrics in `zero` are 0 on
+    every level."""
     path = args.out / name
+    four = missed_one_level_up is not None
     with path.open("w", newline="") as table:
         writer = csv.writer(table)
-        writer.writerow(["metric", "f_level0", "f_level1", "f_level2", "observed_order", "gci_fine", "verdict", "note"])
+        writer.writerow(["metric", "f_level0", "f_level1", "f_level2"] + ["f_level3"] * four +
+                        ["observed_order", "gci_fine", "verdict", "note"] + ["finest_in_coarser_band"] * four)
         for metric in METRICS:
             if metric != drop:
-                levels = (divergent or {}).get(metric)
-                writer.writerow([metric, *(levels or (1.0, 1.0, 1.0)), "divergent" if levels else 2,
+                levels = (divergent or {}).get(metric) or (1.0,) * (3 + four)
+                if metric in zero:
+                    levels = (0.0,) * len(levels)
+                writer.writerow([metric, *levels, "divergent" if metric in (divergent or {}) else 2,
                                  (gci or {}).get(metric, 0.01),
                                  (verdict or {}).get(metric, "pass" if "critical_distance" in metric else ""),
-                                 "a note, with a comma"])
+                                 "a note, with a comma"] +
+                                (["no" if metric in missed_one_level_up else "yes"] if four else []))
     return name
 
 
@@ -99,6 +108,12 @@ result, rows = run([
      "converge": converge_table("c_none.csv", divergent={TORQUE: (0.994, 0.996, 1.0)}), "seeds": []},
     {"design": "other grading", "edge_elements_per_radius": 2, "converge": converge_table("c_grading.csv"),
      "seeds": [seed_table("s_grading.csv", 4)], "seeds_edge_elements_per_radius": 1},
+    # One level up: of the 11 metrics with a band target the stress volume is zero on every level
+    # and not counted; the force's band missed the fourth level, the other nine held.
+    {"design": "one level up", "edge_elements_per_radius": 1, "converge": converge_table("c_up.csv"),
+     "seeds": [seed_table("s_up.csv", 4)],
+     "one_level_up": converge_table("c_up_levels_0-3.csv", missed_one_level_up=[FORCE],
+                                    zero=["safety.stress_pa.volume_above_limit_mm3"])},
 ], "--markdown")
 if result.returncode != 0:
     failures.append(f"standing.py failed: {result.stderr.strip()}")
@@ -120,7 +135,15 @@ else:
         "no seeds": ("no seed table; needle.max_torque_n_m not converging (no seed range to judge its last level step by)",
                      {"seeds": ""}),
         "other grading": ("seeds run with edge_elements_per_radius 1, the converge table with 2", {}),
+        "one level up": (f"{FORCE} band of the three levels below missed the fourth",
+                         {"one_level_up_held": "9 of 10", "one_level_up_missed": FORCE}),
     }
+    up_line = next((line for line in result.stdout.splitlines() if line.startswith("| one level up (1) |")), "")
+    if not up_line.endswith("| 9 of 10; **missed: force** |"):
+        failures.append(f"markdown row of 'one level up': {up_line!r}")
+    meets_line = next((line for line in result.stdout.splitlines() if line.startswith("| meets (2) |")), "")
+    if not meets_line.endswith("| no fourth level |"):
+        failures.append(f"markdown row of 'meets': {meets_line!r}")
     for design, (misses, cells) in expect.items():
         row = rows.get(design)
         if row is None:
@@ -138,6 +161,8 @@ for name, case, reason in [
     ("converge table without a metric", {"converge": converge_table("c_drop.csv", drop=STRAIN_VOLUME)},
      f"c_drop.csv: metric {STRAIN_VOLUME}: not in the table"),
     ("one seed", {"seeds": [seed_table("s_one.csv", 1)]}, "s_one.csv: fewer than two seeds"),
+    ("one level up from three levels", {"one_level_up": converge_table("c_three.csv")},
+     "c_three.csv: 3 levels: the band one level up needs four or more"),
 ]:
     result, _ = run([{"design": name, "converge": converge_table("c_ok.csv"), **case}])
     lines = result.stderr.strip().splitlines()
