@@ -36,5 +36,6 @@ void add_force_trajectory_command(CLI::App& app);
 void add_run_command(CLI::App& app);
 void add_sweep_command(CLI::App& app);
 void add_converge_command(CLI::App& app);
+void add_reestimate_command(CLI::App& app);
 
 }  // namespace needlefem::app

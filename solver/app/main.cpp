@@ -81,6 +81,7 @@ int main(int argc, char** argv) {
   app::add_run_command(cli);
   app::add_sweep_command(cli);
   app::add_converge_command(cli);
+  app::add_reestimate_command(cli);
 
   try {
     std::vector<std::string> reversed(own.rbegin(), own.rend());

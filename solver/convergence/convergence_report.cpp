@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -92,6 +93,9 @@ double limit_value(const std::vector<LevelRun>& levels, const std::string& name)
   return kNaN;
 }
 
+void estimate_rows(Report& report);
+void decide_limits(Report& report);
+
 }  // namespace
 
 Report build_report(std::vector<LevelRun> levels, const Settings& settings) {
@@ -116,20 +120,9 @@ Report build_report(std::vector<LevelRun> levels, const Settings& settings) {
     row.compared = key.compared && !std::isnan(row.limit);
     for (const auto& run : runs)
       row.values.push_back(run.status == "completed" ? number(run.summary, json::json_pointer(key.pointer)) : kNaN);
-    row.estimate = estimate(row.values[n - 3], row.values[n - 2], row.values[n - 1], settings);
-    if (row.compared) row.verdict = verdict(row.estimate, row.limit);
-    if (n >= 4) {
-      const Estimate coarser = estimate(row.values[n - 4], row.values[n - 3], row.values[n - 2], settings);
-      if (coarser.behaviour != Behaviour::incomplete) row.coarser_estimate = coarser;
-      const double finest = row.values[n - 1];
-      if (row.coarser_estimate && !std::isnan(finest)) {
-        row.finest_in_coarser_band = finest >= coarser.band_low && finest <= coarser.band_high;
-        ++report.coarser_bands_checked;
-        report.coarser_bands_held += *row.finest_in_coarser_band ? 1 : 0;
-      }
-    }
     report.rows.push_back(std::move(row));
   }
+  estimate_rows(report);
 
   std::vector<double> tets;
   for (const auto& run : runs) tets.push_back(number(run.summary, json::json_pointer("/mesh/tets")));
@@ -146,7 +139,40 @@ Report build_report(std::vector<LevelRun> levels, const Settings& settings) {
       }
   }
 
-  // Each limit's verdict from its most objective compared metric.
+  decide_limits(report);
+  // Each limit's history.csv columns, from the finest level that names them.
+  for (LimitVerdict& limit : report.limits) {
+    const json::json_pointer at(fmt::format("/safety/{}/history_columns", limit.limit_name));
+    for (auto run = runs.rbegin(); run != runs.rend() && limit.history_columns.empty(); ++run)
+      if (run->status == "completed" && run->summary.contains(at) && run->summary.at(at).is_object())
+        limit.history_columns = run->summary.at(at);
+  }
+  return report;
+}
+
+namespace {
+
+// Each row's estimate on the three finest levels, its verdict, and with four or more levels the
+// check of the band one level up.
+void estimate_rows(Report& report) {
+  const std::size_t n = report.levels.size();
+  for (MetricRow& row : report.rows) {
+    row.estimate = estimate(row.values[n - 3], row.values[n - 2], row.values[n - 1], report.settings);
+    if (row.compared) row.verdict = verdict(row.estimate, row.limit);
+    if (n < 4) continue;
+    const Estimate coarser = estimate(row.values[n - 4], row.values[n - 3], row.values[n - 2], report.settings);
+    if (coarser.behaviour != Behaviour::incomplete) row.coarser_estimate = coarser;
+    const double finest = row.values[n - 1];
+    if (row.coarser_estimate && !std::isnan(finest)) {
+      row.finest_in_coarser_band = finest >= coarser.band_low && finest <= coarser.band_high;
+      ++report.coarser_bands_checked;
+      report.coarser_bands_held += *row.finest_in_coarser_band ? 1 : 0;
+    }
+  }
+}
+
+// Each limit's verdict from its most objective compared metric.
+void decide_limits(Report& report) {
   std::vector<std::string> names;
   for (const auto& row : report.rows)
     if (row.compared && std::find(names.begin(), names.end(), row.limit_name) == names.end()) names.push_back(row.limit_name);
@@ -162,14 +188,64 @@ Report build_report(std::vector<LevelRun> levels, const Settings& settings) {
       if (decider) break;
     }
     if (!decider) continue;
-    LimitVerdict limit{name, decider->limit, decider->metric, *decider->verdict, json::object()};
-    // Its history.csv columns, from the finest level that names them.
-    const json::json_pointer at(fmt::format("/safety/{}/history_columns", name));
-    for (auto run = runs.rbegin(); run != runs.rend() && limit.history_columns.empty(); ++run)
-      if (run->status == "completed" && run->summary.contains(at) && run->summary.at(at).is_object())
-        limit.history_columns = run->summary.at(at);
-    report.limits.push_back(std::move(limit));
+    report.limits.push_back({name, decider->limit, decider->metric, *decider->verdict, json::object()});
   }
+}
+
+}  // namespace
+
+Report report_from_table(const std::string& text, const std::string& file, const Settings& settings) {
+  const auto refuse = [&](const std::string& reason) {
+    return std::invalid_argument(fmt::format("{}: {}", file, reason));
+  };
+  std::istringstream in(text);
+  std::string line;
+  if (!std::getline(in, line)) throw refuse("empty: not a converge table");
+  const std::vector<std::string> header = sweep::csv_record(line);
+  const auto column = [&](const char* name) {
+    const auto at = std::find(header.begin(), header.end(), name);
+    if (at == header.end()) throw refuse(fmt::format("no column {} (not a converge table)", name));
+    return static_cast<std::size_t>(at - header.begin());
+  };
+  const std::size_t metric_column = column("metric"), limit_column = column("limit"),
+                    limit_value_column = column("limit_value"), verdict_column = column("verdict");
+  Report report;
+  report.settings = settings;
+  std::vector<std::size_t> level_columns;
+  for (std::size_t i = 0; i < header.size(); ++i)
+    if (header[i].starts_with("f_level") && header[i].size() > 7 &&
+        header[i].find_first_not_of("0123456789", 7) == std::string::npos) {
+      level_columns.push_back(i);
+      report.levels.push_back({std::stoi(header[i].substr(7)), "", "completed", "", json()});
+    }
+  if (report.levels.size() < 3)
+    throw refuse(fmt::format("{} level columns f_levelK: grid convergence needs three", report.levels.size()));
+  for (int row_number = 2; std::getline(in, line); ++row_number) {
+    if (line.empty()) continue;
+    const std::vector<std::string> fields = sweep::csv_record(line);
+    if (fields.size() != header.size())
+      throw refuse(fmt::format("row {}: {} fields, the header has {}", row_number, fields.size(), header.size()));
+    const auto cell_number = [&](std::size_t i) {
+      if (fields[i].empty()) return kNaN;
+      try {
+        std::size_t used = 0;
+        const double x = std::stod(fields[i], &used);
+        if (used == fields[i].size()) return x;
+      } catch (const std::exception&) {
+      }
+      throw refuse(fmt::format("metric {}: column {}: '{}' is not a number", fields[metric_column], header[i], fields[i]));
+    };
+    MetricRow row;
+    row.metric = fields[metric_column];
+    row.limit_name = fields[limit_column];
+    row.limit = cell_number(limit_value_column);
+    // The table gives a verdict to the rows compared with their limit, and to no other.
+    row.compared = !fields[verdict_column].empty() && !std::isnan(row.limit);
+    for (std::size_t i : level_columns) row.values.push_back(cell_number(i));
+    report.rows.push_back(std::move(row));
+  }
+  estimate_rows(report);
+  decide_limits(report);
   return report;
 }
 

@@ -76,6 +76,14 @@ struct Report {
 
 // Needs at least three levels, in increasing order.
 Report build_report(std::vector<LevelRun> levels, const Settings& settings = {});
+// The same report from a converge table's text (report_csv's columns: metric, limit,
+// limit_value, f_level<K> per level, verdict; the other columns are recomputed), for a table whose
+// runs are gone: its bands and verdicts under these settings and this version's rules. A row is
+// compared with its limit where the table gave it a verdict. Without the runs' summaries there
+// are no refinement-ratio warnings and no history columns. A text that is not such a table
+// (no such column, fewer than three levels, a row of another length, a cell that is not a
+// number) is refused in one line naming `file` (and the metric and column).
+Report report_from_table(const std::string& text, const std::string& file, const Settings& settings = {});
 
 std::string report_csv(const Report& report);
 nlohmann::json report_json(const Report& report);

@@ -64,6 +64,11 @@ Estimate estimate(double coarse, double medium, double fine, const Settings& s) 
     const double rp = std::pow(s.ratio, e.order);
     e.extrapolated = (rp * fine - medium) / (rp - 1.0);
     e.half_width = safety_factor * std::abs(e21) / (rp - 1.0);
+    if (e.observed_order >= s.data_range_order) {
+      const double data_range = std::abs(coarse - fine);  // monotone: the largest of the three differences
+      e.half_width = std::max(e.half_width, safety_factor * data_range);
+      e.note += fmt::format("; band {:g} x the data range max - min", safety_factor);
+    }
   }
   e.gci_fine = fine != 0.0 ? e.half_width / std::abs(fine) : (e.half_width == 0.0 ? 0.0 : kNaN);
   e.band_low = fine - e.half_width;

@@ -315,6 +315,25 @@ std::string csv_field(const std::string& text) {
   return quoted + "\"";
 }
 
+std::vector<std::string> csv_record(const std::string& line) {
+  std::vector<std::string> fields(1);
+  bool quoted = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char ch = line[i];
+    if (quoted && ch == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+      fields.back() += '"';
+      ++i;
+    } else if (ch == '"') {
+      quoted = !quoted;
+    } else if (ch == ',' && !quoted) {
+      fields.emplace_back();
+    } else if (ch != '\r' || i + 1 != line.size()) {
+      fields.back() += ch;
+    }
+  }
+  return fields;
+}
+
 fs::path point_directory(const fs::path& out_dir, const DesignPoint& point) { return out_dir / point.name; }
 
 PointRecord read_point(const DesignPoint& point, const fs::path& out_dir) {

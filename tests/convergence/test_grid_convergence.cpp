@@ -11,6 +11,7 @@
 #include "convergence/convergence_report.hpp"
 #include "convergence/grid_convergence.hpp"
 #include "convergence/history_bands.hpp"
+#include "sweep/sweep_table.hpp"
 
 namespace needlefem::convergence {
 namespace {
@@ -46,14 +47,23 @@ TEST(GridConvergence, GciByHand) {
   EXPECT_EQ(order_text(e), "2");
 }
 
-// An observed order above the formal 2 is used as 2, which widens the band; one below 0.5 is
-// kept (raising it would narrow the band) with Fs = 3.
+// An observed order above the formal 2 is used as 2 in f_ext, and from 2.05 on the band is at
+// least 1.25 times the data range (Eça & Hoekstra); one below 0.5 is kept (raising it would
+// narrow the band) with Fs = 3.
 TEST(GridConvergence, OrderOutsideAsymptoticRange) {
   const Estimate e = estimate(1.09, 1.01, 1.0);  // e32 = 0.08, e21 = 0.01: p = 3
   EXPECT_NEAR(e.observed_order, 3.0, 1e-10);
   EXPECT_EQ(e.order, 2.0);
-  EXPECT_NEAR(e.half_width, 1.25 * 0.01 / 3.0, 1e-12);
+  EXPECT_NEAR(e.extrapolated, (4.0 * 1.0 - 1.01) / 3.0, 1e-12);
+  EXPECT_NEAR(e.half_width, 1.25 * 0.09, 1e-12);  // not 1.25 * 0.01 / 3
   EXPECT_NE(e.note.find("above the formal"), std::string::npos) << e.note;
+  EXPECT_NE(e.note.find("data range"), std::string::npos) << e.note;
+  // Just above 2 (e32 = 4.1 e21: p = 2.036 < 2.05) the band is the GCI's at p = 2.
+  const Estimate near_formal = estimate(1.0 + 0.041 + 0.01, 1.01, 1.0);
+  EXPECT_GT(near_formal.observed_order, 2.0);
+  EXPECT_LT(near_formal.observed_order, 2.05);
+  EXPECT_NEAR(near_formal.half_width, 1.25 * 0.01 / 3.0, 1e-12);
+  EXPECT_EQ(near_formal.note.find("data range"), std::string::npos) << near_formal.note;
   const Estimate slow = estimate(1.0, 0.5, 0.1);  // e32 = 0.5, e21 = 0.4: r^p = 1.25, p = 0.32
   EXPECT_NEAR(slow.observed_order, std::log2(1.25), 1e-12);
   EXPECT_EQ(slow.order, slow.observed_order);
@@ -232,6 +242,70 @@ TEST(ConvergenceReport, BandOfTheCoarserLevelsCheckedAgainstTheFinest) {
   EXPECT_FALSE(report3.rows[0].coarser_estimate.has_value());
   EXPECT_EQ(coarser_band_line(report3), "");
   EXPECT_FALSE(report_json(report3).contains("coarser_bands"));
+}
+
+// A converge table read back (report_from_table) gives the report it was written from: the same
+// values, estimates, verdicts and check one level up; a note with commas and quotes survives
+// the CSV; a table with a band made under other rules gets this version's band; and a text that
+// is not a converge table is refused in one line naming the file.
+TEST(ConvergenceReport, TableReadBackIsTheSameReport) {
+  std::vector<LevelRun> levels;
+  const double point_max[] = {0.15, 0.17, 0.18, 0.185}, critical[] = {0.12, 0.105, 0.1, 0.099};
+  for (int l = 0; l < 4; ++l) {
+    levels.push_back({l, "", "completed", "", summary(point_max[l], critical[l], 0.002 * (4 - l), true)});
+    levels.back().summary["mesh"]["tets"] = 1000 << (3 * l);
+  }
+  const Report written = build_report(levels);
+  const Report read = report_from_table(report_csv(written), "converge.csv");
+  ASSERT_EQ(read.levels.size(), 4u);
+  EXPECT_EQ(read.levels[3].level, 3);
+  ASSERT_EQ(read.rows.size(), written.rows.size());
+  for (std::size_t i = 0; i < read.rows.size(); ++i) {
+    const MetricRow &a = written.rows[i], &b = read.rows[i];
+    EXPECT_EQ(b.metric, a.metric);
+    EXPECT_EQ(b.compared, a.compared) << a.metric;
+    for (std::size_t l = 0; l < 4; ++l) EXPECT_NEAR(b.values[l], a.values[l], 1e-8 * std::abs(a.values[l])) << a.metric;
+    EXPECT_NEAR(b.estimate.half_width, a.estimate.half_width, 1e-7 * std::abs(a.estimate.fine)) << a.metric;
+    EXPECT_EQ(b.estimate.note, a.estimate.note);
+    EXPECT_EQ(b.verdict, a.verdict) << a.metric;
+    EXPECT_EQ(b.finest_in_coarser_band, a.finest_in_coarser_band) << a.metric;
+  }
+  ASSERT_EQ(read.limits.size(), 1u);
+  EXPECT_EQ(read.limits[0].metric, "safety.log_strain.critical_distance");
+  EXPECT_EQ(verdict_line(read), verdict_line(written));
+  EXPECT_EQ(coarser_band_line(read), coarser_band_line(written));
+
+  // The same fields, read as csv_field wrote them.
+  const std::string note = "a note, with \"quotes\", and commas";
+  EXPECT_EQ(sweep::csv_record("x," + sweep::csv_field(note) + ",,1"),
+            (std::vector<std::string>{"x", note, "", "1"}));
+
+  // Levels 0.12 / 0.105 / 0.1 of a table whose gci_fine says 0.1 %: p = 1.58, this version's band.
+  const std::string stale =
+      "metric,limit,limit_value,f_level0,f_level1,f_level2,observed_order,f_extrapolated,gci_fine,band_low,band_high,"
+      "verdict,note\nsafety.log_strain.critical_distance,log_strain,0.19,0.12,0.105,0.1,9,0.1,0.001,0.0999,0.1001,fail,"
+      "\"old, rules\"\n";
+  const Report again = report_from_table(stale, "stale.csv");
+  const Estimate expected = estimate(0.12, 0.105, 0.1);
+  EXPECT_NEAR(again.rows.at(0).estimate.half_width, expected.half_width, 1e-15);
+  EXPECT_EQ(*again.rows.at(0).verdict, Verdict::pass);
+
+  const auto refusal = [](const std::string& text) {
+    try {
+      report_from_table(text, "t.csv");
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(refusal(""), "t.csv: empty: not a converge table");
+  EXPECT_EQ(refusal("metric,limit,limit_value,f_level0,f_level1,verdict\n"),
+            "t.csv: 2 level columns f_levelK: grid convergence needs three");
+  EXPECT_EQ(refusal("metric,limit_value,f_level0,f_level1,f_level2,verdict\n"), "t.csv: no column limit (not a converge table)");
+  EXPECT_EQ(refusal("metric,limit,limit_value,f_level0,f_level1,f_level2,verdict\nm,,,1,x,3,\n"),
+            "t.csv: metric m: column f_level1: 'x' is not a number");
+  EXPECT_EQ(refusal("metric,limit,limit_value,f_level0,f_level1,f_level2,verdict\nm,,,1,2\n"),
+            "t.csv: row 2: 5 fields, the header has 7");
 }
 
 // Histories on h = 1, 1/2, 1/4 whose critical-distance value is g(t) + 0.08 h² t: at every time
