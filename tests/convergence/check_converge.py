@@ -5,7 +5,8 @@ columns and one row per metric, converge_history.csv with each level's history v
 per quantity and output time, and the band of its change since the peak, converge.json with three levels (tets, dofs, wall time) and a
 verdict per limit; the block's max log strain ln 1.2 passes the 0.19 limit; a second start runs
 nothing (resumed) and gives the same report; postprocess/plot_convergence.py writes the two PNGs; --levels 4
-runs level 3 alone and checks each band of levels 0-2 against level 3's value.
+runs level 3 alone and checks each band of levels 0-2 against level 3's value; `needlefem reestimate` gives
+that table back from its level values and refuses a file that is not a converge table.
 With --failing-case (a case whose run fails): converge exits non-zero with one stderr line naming
 level 0 and the reason, still writes converge.json and converge.csv, and leaves no
 converge_history.csv (not even an earlier start's).
@@ -161,6 +162,32 @@ line = f"converge: the bands of levels 0-2 hold level 3's value for {held} of {l
 check(any(l.startswith(line) for l in four.stdout.splitlines()), f"stdout says so: {line!r}")
 report4 = json.loads((args.out / "converge.json").read_text())
 check(report4["coarser_bands"] == {"checked": len(rows4), "held": held}, f"converge.json: {report4.get('coarser_bands')}")
+# `needlefem reestimate` on the table gives it back: the same columns, metrics and verdicts, the
+# bands within the nine printed digits' rounding, and converge's verdict line.
+reestimated = args.out / "reestimated.csv"
+again = subprocess.run([args.exe, "reestimate", str(args.out / "converge.csv"), "--out", str(reestimated)],
+                       capture_output=True, text=True)
+check(again.returncode == 0 and reestimated.exists(), f"reestimate exits 0 and writes its table: {again.stderr.strip()}")
+rows_again = list(csv.DictReader(reestimated.open())) if reestimated.exists() else []
+check(rows_again and list(rows_again[0].keys()) == list(rows4[0].keys()), "reestimate: the same columns")
+check([r["metric"] for r in rows_again] == [r["metric"] for r in rows4], "reestimate: the same metrics")
+check(all(a["verdict"] == b["verdict"] for a, b in zip(rows4, rows_again)), "reestimate: the same verdicts")
+
+
+def close_cells(a, b):
+    """Equal but for the rounding of nine-digit values: a relative band (gci_fine) to 1e-8."""
+    if a == "" or b == "":
+        return a == b
+    return abs(float(a) - float(b)) <= 1e-6 * max(abs(float(a)), abs(float(b))) + 1e-8
+
+
+check(all(close_cells(a[k], b[k]) for a, b in zip(rows4, rows_again) for k in ("band_low", "band_high", "gci_fine")),
+      "reestimate: the same bands within the printed digits")
+check(again.stdout.strip().splitlines()[-1:] == four.stdout.strip().splitlines()[-1:],
+      f"reestimate: converge's verdict line: {again.stdout.strip().splitlines()[-1:]}")
+refused = subprocess.run([args.exe, "reestimate", str(args.out / "converge.json")], capture_output=True, text=True)
+check(refused.returncode != 0 and len(refused.stderr.strip().splitlines()) == 1 and "converge.json" in refused.stderr,
+      f"reestimate refuses a file that is not a converge table in one line naming it: {refused.stderr.strip()!r}")
 strain4 = {r["metric"]: r for r in rows4}.get("max.log_strain")
 check(strain4 is not None and abs(float(strain4["f_level3"]) - math.log(1.2)) < 1e-3, "max.log_strain at level 3 is ln 1.2")
 
