@@ -33,8 +33,8 @@ where they are a trend. The seeds measure the scatter: a divergent metric whose 
 converging"; without seeds every divergent metric is.
 One level up: each band of levels 0-2 claims to hold the converged value, which a fourth level
 tests directly (`needlefem converge --levels 4`). Of the metrics above, those whose band missed
-the finest value of the `one_level_up` table are misses; metrics whose finest value is zero on
-every level (no volume above the limit) are not counted.
+the finest value of the `one_level_up` table are misses; a metric that is zero on every level
+(no volume above the limit) is not counted.
 A missing file, a table without a metric, or a seed table whose runs are fewer than two stops
 the script with one line naming the file (and the metric).
 

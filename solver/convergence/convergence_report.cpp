@@ -286,9 +286,11 @@ json report_json(const Report& report) {
                      {"oscillatory_safety_factor", s.oscillatory_safety_factor},
                      {"formal_order", s.max_order},
                      {"asymptotic_order_min", s.min_order},
+                     {"data_range_order", s.data_range_order},
                      {"mesh_independent_tolerance", s.mesh_independent_tolerance},
                      {"band", "f_fine +- gci_fine |f_fine|; estimates on the three finest levels"},
-                     {"method", "Celik et al. 2008, J. Fluids Eng. 130:078001; Roache 1998"}};
+                     {"method", "Celik et al. 2008, J. Fluids Eng. 130:078001; Roache 1998; from data_range_order on, "
+                                "at least safety_factor x the levels' range (Eca & Hoekstra 2014, J. Comput. Phys. 262:104)"}};
   json levels = json::array();
   for (std::size_t i = 0; i < report.levels.size(); ++i) {
     const LevelRun& run = report.levels[i];
