@@ -8,7 +8,7 @@
 
 #include <fmt/format.h>
 
-#include "sweep/sweep_table.hpp"
+#include "output/csv.hpp"
 
 namespace needlefem::convergence {
 
@@ -201,7 +201,7 @@ Report report_from_table(const std::string& text, const std::string& file, const
   std::istringstream in(text);
   std::string line;
   if (!std::getline(in, line)) throw refuse("empty: not a converge table");
-  const std::vector<std::string> header = sweep::csv_record(line);
+  const std::vector<std::string> header = output::csv_record(line);
   const auto column = [&](const char* name) {
     const auto at = std::find(header.begin(), header.end(), name);
     if (at == header.end()) throw refuse(fmt::format("no column {} (not a converge table)", name));
@@ -222,17 +222,11 @@ Report report_from_table(const std::string& text, const std::string& file, const
     throw refuse(fmt::format("{} level columns f_levelK: grid convergence needs three", report.levels.size()));
   for (int row_number = 2; std::getline(in, line); ++row_number) {
     if (line.empty()) continue;
-    const std::vector<std::string> fields = sweep::csv_record(line);
+    const std::vector<std::string> fields = output::csv_record(line);
     if (fields.size() != header.size())
       throw refuse(fmt::format("row {}: {} fields, the header has {}", row_number, fields.size(), header.size()));
     const auto cell_number = [&](std::size_t i) {
-      if (fields[i].empty()) return kNaN;
-      try {
-        std::size_t used = 0;
-        const double x = std::stod(fields[i], &used);
-        if (used == fields[i].size()) return x;
-      } catch (const std::exception&) {
-      }
+      if (const auto x = output::csv_number(fields[i])) return *x;
       throw refuse(fmt::format("metric {}: column {}: '{}' is not a number", fields[metric_column], header[i], fields[i]));
     };
     MetricRow row;
@@ -271,7 +265,7 @@ std::string report_csv(const Report& report) {
                                    coarser ? number_text(coarser->band_high) : "",
                                    row.finest_in_coarser_band ? (*row.finest_in_coarser_band ? "yes" : "no") : ""});
     }
-    for (auto& field : fields) field = sweep::csv_field(field);
+    for (auto& field : fields) field = output::csv_field(field);
     text += fmt::format("{}\n", fmt::join(fields, ","));
   }
   return text;

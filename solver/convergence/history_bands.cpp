@@ -8,7 +8,7 @@
 
 #include <fmt/format.h>
 
-#include "sweep/sweep_table.hpp"
+#include "output/csv.hpp"
 
 namespace needlefem::convergence {
 
@@ -104,7 +104,7 @@ std::string history_bands_csv(const HistoryBands& bands) {
     for (double v : {row.peak_time_s, row.change.fine, row.change.band_low, row.change.band_high})
       fields.push_back(number_text(v));
     fields.emplace_back(change_resolution(row));
-    for (auto& field : fields) field = sweep::csv_field(field);
+    for (auto& field : fields) field = output::csv_field(field);
     text += fmt::format("{}\n", fmt::join(fields, ","));
   }
   return text;

@@ -1,6 +1,8 @@
 // history.csv read back; see history_table.hpp.
 #include "output/history_table.hpp"
 
+#include "output/csv.hpp"
+
 #include <algorithm>
 #include <cstdlib>
 #include <fstream>
@@ -13,15 +15,6 @@
 namespace needlefem::output {
 
 namespace {
-
-std::vector<std::string> split_csv(const std::string& line) {
-  std::vector<std::string> fields;
-  std::stringstream stream(line);
-  std::string field;
-  while (std::getline(stream, field, ',')) fields.push_back(field);
-  if (!line.empty() && line.back() == ',') fields.emplace_back();
-  return fields;
-}
 
 constexpr std::array<const char*, 3> kPositionSuffixes{"_x_mm", "_y_mm", "_z_mm"};
 
@@ -60,28 +53,21 @@ HistoryTable read_history_table(const std::filesystem::path& csv) {
   if (!in) throw std::runtime_error(fmt::format("{}: cannot open", table.file));
   std::string line;
   if (!std::getline(in, line)) throw std::runtime_error(fmt::format("{}: empty file", table.file));
-  table.columns = split_csv(line);
+  table.columns = csv_record(line);
   for (int row = 2; std::getline(in, line); ++row) {
     if (line.empty()) continue;
-    const std::vector<std::string> fields = split_csv(line);
+    const std::vector<std::string> fields = csv_record(line);
     if (fields.size() != table.columns.size())
       throw std::runtime_error(
           fmt::format("{}: line {} has {} fields, the header {}", table.file, row, fields.size(), table.columns.size()));
     std::vector<double> values;
     values.reserve(fields.size());
     for (std::size_t i = 0; i < fields.size(); ++i) {
-      if (fields[i].empty()) {
-        values.push_back(std::numeric_limits<double>::quiet_NaN());
-        continue;
-      }
-      // strtod, not stod: a subnormal value is a number too.
-      const char* begin = fields[i].c_str();
-      char* end = nullptr;
-      const double value = std::strtod(begin, &end);
-      if (end != begin + fields[i].size())
+      const std::optional<double> value = csv_number(fields[i]);
+      if (!value)
         throw std::runtime_error(fmt::format("{}: line {}: column '{}': '{}' is not a number", table.file, row,
                                              table.columns[i], fields[i]));
-      values.push_back(value);
+      values.push_back(*value);
     }
     table.rows.push_back(std::move(values));
   }

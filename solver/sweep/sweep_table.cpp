@@ -19,6 +19,7 @@
 #include "case/case.hpp"
 #include "case/schema.hpp"
 #include "io_errors/io_errors.hpp"
+#include "output/csv.hpp"
 
 namespace needlefem::sweep {
 
@@ -205,12 +206,12 @@ std::deque<Column> table_columns(const SweepPlan& plan, const fs::path& out_dir)
 
 std::string csv_text(const std::deque<Column>& columns, std::size_t rows) {
   std::vector<std::string> header;
-  for (const auto& c : columns) header.push_back(csv_field(c.name));
+  for (const auto& c : columns) header.push_back(output::csv_field(c.name));
   std::string text = fmt::format("{}\n", fmt::join(header, ","));
   for (std::size_t i = 0; i < rows; ++i) {
     std::vector<std::string> fields;
     for (const auto& c : columns) {
-      if (c.kind == Kind::text) fields.push_back(csv_field(c.text[i]));
+      if (c.kind == Kind::text) fields.push_back(output::csv_field(c.text[i]));
       else if (c.kind == Kind::number) fields.push_back(std::isnan(c.number[i]) ? "" : fmt::format("{:.9g}", c.number[i]));
       else fields.push_back(c.flag[i] == kUnknown ? "" : fmt::format("{}", c.flag[i]));
     }
@@ -307,32 +308,6 @@ class TableLock {
 fs::path partial_name(const fs::path& file) { return fmt::format("{}.partial.{}", file.string(), ::getpid()); }
 
 }  // namespace
-
-std::string csv_field(const std::string& text) {
-  if (text.find_first_of(",\"\n") == std::string::npos) return text;
-  std::string quoted = "\"";
-  for (char ch : text) quoted += ch == '"' ? std::string("\"\"") : std::string(1, ch);
-  return quoted + "\"";
-}
-
-std::vector<std::string> csv_record(const std::string& line) {
-  std::vector<std::string> fields(1);
-  bool quoted = false;
-  for (std::size_t i = 0; i < line.size(); ++i) {
-    const char ch = line[i];
-    if (quoted && ch == '"' && i + 1 < line.size() && line[i + 1] == '"') {
-      fields.back() += '"';
-      ++i;
-    } else if (ch == '"') {
-      quoted = !quoted;
-    } else if (ch == ',' && !quoted) {
-      fields.emplace_back();
-    } else if (ch != '\r' || i + 1 != line.size()) {
-      fields.back() += ch;
-    }
-  }
-  return fields;
-}
 
 fs::path point_directory(const fs::path& out_dir, const DesignPoint& point) { return out_dir / point.name; }
 

@@ -49,10 +49,6 @@ std::filesystem::path point_directory(const std::filesystem::path& out_dir, cons
 // A point counts as run only when DIR/<point>/summary.json echoes the point's own case.
 PointRecord read_point(const DesignPoint& point, const std::filesystem::path& out_dir);
 
-// A CSV field, quoted when it holds a comma, a quote or a line break.
-std::string csv_field(const std::string& text);
-// The fields of one CSV line as csv_field writes them (quoted fields unquoted, "" read as ").
-std::vector<std::string> csv_record(const std::string& line);
 
 // Writes `text` to `file` through a temporary file renamed over it.
 void write_file_atomically(const std::filesystem::path& file, const std::string& text);

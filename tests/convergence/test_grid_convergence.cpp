@@ -11,7 +11,7 @@
 #include "convergence/convergence_report.hpp"
 #include "convergence/grid_convergence.hpp"
 #include "convergence/history_bands.hpp"
-#include "sweep/sweep_table.hpp"
+#include "output/csv.hpp"
 
 namespace needlefem::convergence {
 namespace {
@@ -277,7 +277,7 @@ TEST(ConvergenceReport, TableReadBackIsTheSameReport) {
 
   // The same fields, read as csv_field wrote them.
   const std::string note = "a note, with \"quotes\", and commas";
-  EXPECT_EQ(sweep::csv_record("x," + sweep::csv_field(note) + ",,1"),
+  EXPECT_EQ(output::csv_record("x," + output::csv_field(note) + ",,1"),
             (std::vector<std::string>{"x", note, "", "1"}));
 
   // Levels 0.12 / 0.105 / 0.1 of a table whose gci_fine says 0.1 %: p = 1.58, this version's band.
